@@ -1,0 +1,1 @@
+"""turtle_lite: a turtlesim-compatible simulator (model modules import no rospy)."""

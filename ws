@@ -1,0 +1,151 @@
+#!/usr/bin/env bash
+# The workspace's one entry point: ./ws demo runs the main demo, ./ws test runs every test.
+# Every step runs ROS under Debian's /usr/bin/python3 whatever python3 comes first on PATH.
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+cd "$ROOT"
+
+# Debian's ROS lives in /usr; a pyenv or venv python3 first on PATH cannot import rospy.
+export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
+unset PYTHONHOME PYTHONPATH VIRTUAL_ENV
+export PYTHONDONTWRITEBYTECODE=1
+# Several builds can share one checkout (a developer and a helper, say) by naming their own.
+BUILD_DIR=${WS_BUILD_DIR:-build}
+DEVEL_DIR=${WS_DEVEL_DIR:-devel}
+RESULTS_DIR="$ROOT/$BUILD_DIR/ws-results"
+LINT_VENV="$ROOT/$BUILD_DIR/lint-venv"
+
+usage() {
+  cat <<EOF
+usage: ./ws COMMAND [ARGS]
+  demo [ARGS]        deps, build, then the main demo (the convoy with its autopilot leader)
+  test               deps, build, lint, unit tests, integration tests, one summary line
+  deps               install the missing Debian packages of tools/debian-packages.txt
+  build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install)
+  lint               catkin_lint, ruff, hadolint, actionlint
+  unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
+  integration [F..]  rostest every test/*.test of every package (or just the files F)
+  bench [NAME..]     run the benchmarks under bench/ (all, or bench/NAME.py)
+  shell              a bash with the workspace sourced, for running things by hand
+EOF
+}
+
+source_devel() {
+  [[ -f $DEVEL_DIR/setup.bash ]] || { echo "ws: $DEVEL_DIR/ is missing: run ./ws build" >&2; exit 1; }
+  # setup.bash reads unset variables; relax nounset while it runs.
+  set +u
+  # shellcheck disable=SC1090,SC1091
+  source "$DEVEL_DIR/setup.bash"
+  set -u
+}
+
+cmd_deps() { bash tools/install-deps.sh; }
+
+cmd_build() {
+  catkin_make --build "$BUILD_DIR" -DCATKIN_DEVEL_PREFIX="$ROOT/$DEVEL_DIR" \
+    -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON "$@"
+}
+
+lint_venv() {
+  if [[ ! -x $LINT_VENV/bin/ruff ]] || ! cmp -s tools/lint-requirements.txt "$LINT_VENV/requirements.txt"; then
+    echo "lint: installing linters into $LINT_VENV"
+    rm -rf "$LINT_VENV"
+    /usr/bin/python3 -m venv "$LINT_VENV"
+    "$LINT_VENV/bin/pip" install -q --disable-pip-version-check -r tools/lint-requirements.txt
+    cp tools/lint-requirements.txt "$LINT_VENV/requirements.txt"
+  fi
+}
+
+cmd_lint() {
+  lint_venv
+  source_devel
+  local failed=0
+  echo "lint: catkin_lint"; catkin_lint --strict -W2 --quiet src || failed=1
+  echo "lint: ruff"; "$LINT_VENV/bin/ruff" check --quiet . || failed=1
+  echo "lint: hadolint"; "$LINT_VENV/bin/hadolint" docker/Dockerfile || failed=1
+  echo "lint: actionlint"; "$LINT_VENV/bin/actionlint" .github/workflows/*.yml || failed=1
+  if ((failed)); then echo "lint: FAILED" >&2; return 1; fi
+  echo "lint: clean"
+}
+
+cmd_unit() {
+  source_devel
+  mkdir -p "$RESULTS_DIR"
+  local status=0
+  /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS_DIR/unit.xml" \
+    src/*/test/unit "$@" || status=$?
+  # 5 = no tests collected: the summary reports that as a failure, not pytest's exit code.
+  ((status == 0 || status == 5))
+}
+
+cmd_integration() {
+  source_devel
+  mkdir -p "$RESULTS_DIR"
+  local files=("$@")
+  ((${#files[@]})) || files=(src/*/test/*.test)
+  local failed=0 f pkg name
+  for f in "${files[@]}"; do
+    pkg=$(basename "$(dirname "$(dirname "$f")")")
+    name=$(basename "$f" .test)
+    echo "integration: $pkg/$name"
+    rm -f "$RESULTS_DIR/$pkg/rostest-$pkg-$name.xml"
+    # rostest limits each test node itself (time-limit); the outer timeout catches a hung launch.
+    timeout --kill-after=10 600 rostest --results-base-dir="$RESULTS_DIR" \
+      --results-filename="rostest-$pkg-$name.xml" "$pkg" "$name.test" \
+      >"$RESULTS_DIR/rostest-$pkg-$name.log" 2>&1 || { failed=1; tail -n 30 "$RESULTS_DIR/rostest-$pkg-$name.log"; }
+  done
+  return $failed
+}
+
+cmd_summary() {
+  /usr/bin/python3 tools/test_summary.py "$RESULTS_DIR" "$@"
+}
+
+cmd_test() {
+  cmd_deps
+  cmd_build
+  rm -rf "$RESULTS_DIR"
+  local lint_ok=1
+  cmd_lint || lint_ok=0
+  cmd_unit || true
+  cmd_integration || true
+  local expected=(--expect unit.xml) f pkg
+  for f in src/*/test/*.test; do
+    pkg=$(basename "$(dirname "$(dirname "$f")")")
+    expected+=(--expect "$pkg/rostest-$pkg-$(basename "$f" .test).xml")
+  done
+  ((lint_ok)) || expected+=(--failed-step lint)
+  cmd_summary "${expected[@]}"
+}
+
+cmd_demo() {
+  cmd_deps
+  cmd_build
+  source_devel
+  rosrun convoy convoy_demo --out "$ROOT/$BUILD_DIR/demo" "$@"
+}
+
+cmd_bench() {
+  source_devel
+  local names=("$@") n
+  ((${#names[@]})) || mapfile -t names < <(cd bench && ls ./*.py | sed 's|^\./||; s|\.py$||')
+  for n in "${names[@]}"; do
+    echo "bench: $n"
+    /usr/bin/python3 "bench/$n.py"
+  done
+}
+
+cmd_shell() {
+  source_devel
+  exec bash --rcfile <(echo "source ~/.bashrc 2>/dev/null; export PATH=\"$PATH\"; source \"$ROOT/$DEVEL_DIR/setup.bash\"; PS1=\"(ws) \$PS1\"")
+}
+
+command=${1:-}
+[[ -n $command ]] || { usage; exit 2; }
+shift
+case $command in
+  demo|test|deps|build|lint|unit|integration|summary|bench|shell) "cmd_$command" "$@" ;;
+  -h|--help|help) usage ;;
+  *) echo "ws: unknown command '$command'" >&2; usage >&2; exit 2 ;;
+esac
