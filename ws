@@ -52,7 +52,8 @@ lint_venv() {
     echo "lint: installing linters into $LINT_VENV"
     rm -rf "$LINT_VENV"
     /usr/bin/python3 -m venv "$LINT_VENV"
-    "$LINT_VENV/bin/pip" install -q --disable-pip-version-check -r tools/lint-requirements.txt
+    "$LINT_VENV/bin/pip" install -q --disable-pip-version-check -r tools/lint-requirements.txt \
+      >"$ROOT/$BUILD_DIR/lint-install.log" 2>&1 || { cat "$ROOT/$BUILD_DIR/lint-install.log" >&2; return 1; }
     cp tools/lint-requirements.txt "$LINT_VENV/requirements.txt"
   fi
 }
