@@ -1,9 +1,11 @@
 #!/usr/bin/python3
-"""Count every test of a ./ws test run from its JUnit XML files and print one closing line.
+"""Count every test of a ./ws test run from its JUnit XML and print one closing line.
 
-Unit tests (pytest) and integration tests (rostest) both leave JUnit XML under the results
-directory. An expected file that is missing (a test that crashed before reporting) and a failed
-non-test step (lint) count as failures, so a broken run can never look green.
+pytest leaves one JUnit file. rostest leaves, per .test file, one rosunit-<test>.xml per <test>
+node (the real test cases) and a rostest-*.xml that wraps each <test> node in a single case,
+failing only when the node itself failed (crashed, timed out, wrote no results). So a .test
+file counts its rosunit cases, plus the wrapper's failures. Anything expected but missing, and
+a failed non-test step (lint), count as failures, so a broken run can never look green.
 """
 import argparse
 import pathlib
@@ -11,60 +13,91 @@ import sys
 import xml.etree.ElementTree as ET
 
 
-def count_cases(path):
-    """Return (passed, failed, skipped, failure descriptions) for one JUnit XML file."""
-    passed = failed = skipped = 0
-    failures = []
-    root = ET.parse(path).getroot()
-    for case in root.iter('testcase'):
-        name = '%s.%s' % (case.get('classname', ''), case.get('name', ''))
-        if case.find('failure') is not None or case.find('error') is not None:
-            failed += 1
-            failures.append(name)
-        elif case.find('skipped') is not None:
-            skipped += 1
-        else:
-            passed += 1
-    return passed, failed, skipped, failures
+class Tally:
+    """Passed/failed/skipped counts and the names of what failed."""
+
+    def __init__(self):
+        self.passed = self.failed = self.skipped = 0
+        self.problems = []
+
+    def counts(self):
+        return self.passed, self.failed, self.skipped
+
+    def add_file(self, path, label, failures_only=False):
+        """Count the test cases of one JUnit file; with failures_only, count only failed cases."""
+        try:
+            root = ET.parse(path).getroot()
+        except ET.ParseError as err:
+            self.fail('%s: unreadable result file (%s)' % (label, err))
+            return
+        for case in root.iter('testcase'):
+            if case.find('failure') is not None or case.find('error') is not None:
+                self.fail('%s: %s.%s' % (label, case.get('classname', ''), case.get('name', '')))
+            elif failures_only:
+                continue
+            elif case.find('skipped') is not None:
+                self.skipped += 1
+            else:
+                self.passed += 1
+
+    def fail(self, problem):
+        self.failed += 1
+        self.problems.append(problem)
+
+
+def count_rostest_dir(tally, directory, label):
+    """Count one .test file's results."""
+    unit_files = sorted(directory.rglob('rosunit-*.xml'))
+    if not unit_files:
+        tally.fail('%s: no test results (the test node crashed or never ran; see %s)'
+                   % (label, directory / 'rostest.log'))
+    for path in unit_files:
+        tally.add_file(path, label)
+    for path in sorted(directory.rglob('rostest-*.xml')):
+        tally.add_file(path, label, failures_only=True)
+
+
+def report(label, before, after):
+    """One line per result source: what it added to the tally."""
+    passed, failed, skipped = (now - then for now, then in zip(after, before, strict=True))
+    print('  %-50s %3d passed, %d failed%s'
+          % (label, passed, failed, ', %d skipped' % skipped if skipped else ''))
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument('results_dir', type=pathlib.Path)
-    parser.add_argument('--expect', action='append', default=[],
-                        help='a result file (relative to results_dir) that must exist')
+    parser.add_argument('--junit', action='append', default=[], type=pathlib.Path,
+                        help='a JUnit file that must exist (pytest)')
+    parser.add_argument('--rostest', action='append', default=[], type=pathlib.Path,
+                        help="one .test file's results directory")
     parser.add_argument('--failed-step', action='append', default=[],
                         help='a non-test step that failed (counts as one failure)')
     args = parser.parse_args()
 
-    passed = failed = skipped = 0
-    problems = []
-    for rel in args.expect:
-        path = args.results_dir / rel
-        if not path.is_file():
-            failed += 1
-            problems.append('%s: no result file (the test crashed or never ran)' % rel)
-            continue
-        try:
-            p, f, s, names = count_cases(path)
-        except ET.ParseError as err:
-            failed += 1
-            problems.append('%s: unreadable result file (%s)' % (rel, err))
-            continue
-        print('  %-60s %3d passed, %d failed%s' % (rel, p, f, ', %d skipped' % s if s else ''))
-        passed, failed, skipped = passed + p, failed + f, skipped + s
-        problems += ['%s: %s' % (rel, n) for n in names]
+    tally = Tally()
+    for path in args.junit:
+        before = tally.counts()
+        if path.is_file():
+            tally.add_file(path, path.name)
+        else:
+            tally.fail('%s: no result file' % path)
+        report(path.name, before, tally.counts())
+    for directory in args.rostest:
+        label = '/'.join(directory.parts[-2:])
+        before = tally.counts()
+        count_rostest_dir(tally, directory, label)
+        report(label, before, tally.counts())
     for step in args.failed_step:
-        failed += 1
-        problems.append('step %s failed' % step)
-    for problem in problems:
+        tally.fail('step %s failed' % step)
+
+    for problem in tally.problems:
         print('FAILED ' + problem)
-    if passed + failed == 0:
-        print('no test ran')
-        failed = 1
-    line = '%d passed, %d failed' % (passed, failed)
-    print(line + (', %d skipped' % skipped if skipped else ''))
-    return 1 if failed else 0
+    if tally.passed + tally.failed == 0:
+        tally.fail('no test ran')
+        print('FAILED no test ran')
+    line = '%d passed, %d failed' % (tally.passed, tally.failed)
+    print(line + (', %d skipped' % tally.skipped if tally.skipped else ''))
+    return 1 if tally.failed else 0
 
 
 if __name__ == '__main__':

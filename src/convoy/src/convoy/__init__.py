@@ -1,0 +1,1 @@
+"""The convoy practice: followers chasing their leader turtle, plus an autopilot leader."""

@@ -1,0 +1,53 @@
+"""ROS glue shared by the convoy nodes: commands out as Twist, poses in, numeric parameters."""
+import contextlib
+import math
+
+import rospy
+from geometry_msgs.msg import Twist
+
+from convoy.control import STOP, Pose2D
+
+
+class ConfigError(ValueError):
+    """A parameter is missing or invalid; the message names it, its value and the expectation."""
+
+
+def number_param(name, default, minimum, allow_minimum=True):
+    """Private float parameter ~name, finite and >= minimum (> minimum if not allow_minimum)."""
+    value = rospy.get_param('~' + name, default)
+    ok = (isinstance(value, (int, float)) and not isinstance(value, bool)
+          and math.isfinite(value) and (value >= minimum if allow_minimum else value > minimum))
+    if not ok:
+        raise ConfigError('parameter ~%s has value %r: expected a finite number %s %g'
+                          % (name, value, '>=' if allow_minimum else '>', minimum))
+    return float(value)
+
+
+def pose_from_msg(msg):
+    """A turtle_lite/Pose message as a model Pose2D (not checked for finiteness)."""
+    return Pose2D(float(msg.x), float(msg.y), float(msg.theta))
+
+
+class CommandPublisher:
+    """Publishes model Commands as geometry_msgs/Twist (linear.x, angular.z) on one topic."""
+
+    def __init__(self, topic, queue_size):
+        self._pub = rospy.Publisher(topic, Twist, queue_size=queue_size)
+
+    def publish(self, command):
+        """Publishes; a pose callback racing shutdown may find the publisher closed: ignored."""
+        twist = Twist()
+        twist.linear.x = command.linear_mps
+        twist.angular.z = command.angular_radps
+        try:
+            self._pub.publish(twist)
+        except (rospy.ROSException, ValueError):
+            # rospy raises ROSException, or ValueError ("I/O operation on closed file") from
+            # its closed buffer, when a callback publishes while the node shuts down.
+            if not rospy.is_shutdown():
+                raise
+
+    def stop(self):
+        """Sends one zero Twist; for rospy.on_shutdown, when the publisher may be closed."""
+        with contextlib.suppress(rospy.ROSException, ValueError):
+            self.publish(STOP)

@@ -1,0 +1,1 @@
+"""multi_sync: the multi-robot synchronisation lesson, with turtle_lite turtles as robots."""

@@ -1,0 +1,276 @@
+"""The lesson's move_robot: announce ready, wait for the monitor's GO, drive forward safely."""
+import math
+import sys
+import threading
+from dataclasses import dataclass
+
+import rospy
+from geometry_msgs.msg import Twist
+
+from multi_sync.motion import WORLD_SIZE_M, DriveLimits, TeamPositions, decide
+from multi_sync.msg import RobotPosition, RobotStatus
+from multi_sync.node_util import parse_argv_or_exit, synchronous_publisher
+from multi_sync.team import MONITOR_FRAME_ID, parse_robot_id
+from turtle_lite.msg import Pose
+
+# Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
+SHARED_QUEUE = 100
+
+
+@dataclass(frozen=True)
+class MoveRobotConfig:
+    """move_robot's private parameters (see MoveRobotNode)."""
+
+    speed_mps: float = 0.2
+    rate_hz: float = 10.0
+    stop_distance_m: float = 0.5
+    min_gap_m: float = 1.0
+    world_size_m: float = WORLD_SIZE_M
+    announce_period_s: float = 1.0
+    report_period_s: float = 5.0
+
+
+# name: (lowest, highest, lowest allowed?) for each parameter; every one must be finite.
+_RANGES = {
+    'speed_mps': (0.0, 10.0, False),
+    'rate_hz': (0.0, 1000.0, False),
+    'stop_distance_m': (0.0, WORLD_SIZE_M / 2, True),
+    'min_gap_m': (0.0, WORLD_SIZE_M, True),
+    'world_size_m': (0.0, 1000.0, False),
+    'announce_period_s': (0.0, 60.0, False),
+    'report_period_s': (0.0, 3600.0, False),
+}
+
+
+def load_config(get_param=rospy.get_param):
+    """Read and check the private parameters; raise ValueError naming the bad one."""
+    values = {}
+    for name, (low, high, low_ok) in _RANGES.items():
+        value = get_param('~' + name, getattr(MoveRobotConfig, name))
+        ok = (not isinstance(value, bool) and isinstance(value, (int, float))
+              and math.isfinite(value) and value <= high and (value >= low if low_ok
+                                                               else value > low))
+        if not ok:
+            raise ValueError('parameter ~%s = %r: expected a number %s %g and <= %g'
+                             % (name, value, '>=' if low_ok else '>', low, high))
+        values[name] = float(value)
+    config = MoveRobotConfig(**values)
+    try:
+        DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
+                    config.world_size_m)
+    except ValueError as err:
+        raise ValueError('parameters ~stop_distance_m and ~world_size_m: %s' % err) from None
+    return config
+
+
+class _AnnounceOnConnect(rospy.SubscribeListener):
+    """Sends the robot's ready status to each new team_status subscriber as it connects."""
+
+    def __init__(self, node):
+        super().__init__()
+        self._node = node
+
+    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
+        self._node.announce_to(peer_publish)
+
+
+class MoveRobotNode:
+    """One robot of the team: ready, wait for GO, then forward until a wall or teammate.
+
+    The robot is ready once it knows its pose. It then publishes its ready status at once,
+    again every announce_period_s until GO, and to every team_status subscriber that
+    connects (so a monitor started or restarted at any time counts it). GO is any
+    team_status message with header.frame_id "monitor": the first one starts the 10 Hz
+    drive loop and sends the first command from the callback itself.
+
+    Subscribes:
+        robot_<id>/pose (turtle_lite/Pose): the robot's pose, for the bumper.
+        team_status (multi_sync/RobotStatus): GO from the monitor; teammates' reports ignored.
+        team_positions (multi_sync/RobotPosition): teammates' positions (own ignored).
+    Publishes:
+        robot_<id>/cmd_vel (geometry_msgs/Twist): speed_mps forward at rate_hz after GO,
+            0 when stopped by the bumper or a teammate, and 0 on shutdown.
+        team_status (multi_sync/RobotStatus): ready status, robot_id = id, is_ready = true.
+        team_positions (multi_sync/RobotPosition): own pose at rate_hz after GO.
+    Services: none.
+    Parameters (private):
+        ~speed_mps (float, 0.2 m/s): forward speed, the lesson's 0.2.
+        ~rate_hz (float, 10 Hz): drive loop rate, the lesson's 10.
+        ~stop_distance_m (float, 0.5 m): the bumper stops the robot this far from the wall ahead.
+        ~min_gap_m (float, 1.0 m): stop while a teammate ahead is closer than this; 0 disables.
+        ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's).
+        ~announce_period_s (float, 1.0 s): ready re-announcement period until GO.
+        ~report_period_s (float, 5.0 s): how often the nearest teammate is logged.
+    """
+
+    def __init__(self, robot_id, config):
+        self._id = robot_id
+        self._cfg = config
+        self._limits = DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
+                                   config.world_size_m)
+        self._team = TeamPositions(robot_id)
+        self._lock = threading.Lock()
+        self._pose = None
+        self._go = False
+        self._go_stamp = None
+        self._moved = False
+        self._reason = None
+        self._drive_timer = None
+        self._stopped = False  # shutting down: no more commands but the final stop
+        self._deferred = []  # log lines held back from the GO callback until the first tick
+        # Synchronous: the first command leaves within the GO callback, the final stop
+        # before the process exits.
+        self._cmd_pub = synchronous_publisher('robot_%d/cmd_vel' % robot_id, Twist)
+        self._pos_pub = rospy.Publisher('team_positions', RobotPosition, queue_size=10)
+        self._status_pub = rospy.Publisher('team_status', RobotStatus, queue_size=10,
+                                           subscriber_listener=_AnnounceOnConnect(self))
+        rospy.on_shutdown(self._stop)
+        self._announce_timer = rospy.Timer(rospy.Duration(config.announce_period_s),
+                                           self._on_announce_timer)
+        rospy.Subscriber('robot_%d/pose' % robot_id, Pose, self._on_pose, queue_size=1)
+        rospy.Subscriber('team_positions', RobotPosition, self._on_position,
+                         queue_size=SHARED_QUEUE)
+        # tcp_nodelay: GO is one small message; Nagle's algorithm could hold it back.
+        rospy.Subscriber('team_status', RobotStatus, self._on_status, queue_size=SHARED_QUEUE,
+                         tcp_nodelay=True)
+
+    # --- readiness -------------------------------------------------------------------------
+    def _ready_msg(self):
+        msg = RobotStatus()
+        msg.header.stamp = rospy.Time.now()
+        msg.robot_id = self._id
+        msg.is_ready = True
+        return msg
+
+    def announce_to(self, send):
+        """Send the ready status with send (a publish function) if the robot is ready."""
+        with self._lock:
+            ready = self._pose is not None
+        if ready:
+            send(self._ready_msg())
+
+    def _on_pose(self, msg):
+        with self._lock:
+            first = self._pose is None
+            self._pose = (msg.x, msg.y, msg.theta)
+            go = self._go
+        if first and not go:
+            self._status_pub.publish(self._ready_msg())
+            rospy.loginfo('Robot %d published ready status', self._id)
+
+    def _on_announce_timer(self, _event):
+        with self._lock:
+            go, ready = self._go, self._pose is not None
+        if go:
+            return
+        if not ready:
+            rospy.logwarn_throttle(5.0, 'Robot %d: no pose yet on %s'
+                                   % (self._id, rospy.resolve_name('robot_%d/pose' % self._id)))
+            return
+        self._status_pub.publish(self._ready_msg())
+        rospy.loginfo('Robot %d: waiting for team', self._id)
+
+    def _on_status(self, msg):
+        if msg.header.frame_id != MONITOR_FRAME_ID:
+            return
+        with self._lock:
+            if self._go or self._stopped:
+                return
+            self._go = True
+            self._go_stamp = msg.header.stamp
+            # Event-driven start: the first command leaves from this callback. Everything
+            # else (log lines, sharing the position) waits for the first tick, so that a
+            # whole team starting at once does not hold each other's first commands up.
+            self._deferred.append("Robot %d: Team is ready. Let's move!" % self._id)
+            self._deferred.extend(self._command_locked())
+            self._drive_timer = rospy.Timer(rospy.Duration(1.0 / self._cfg.rate_hz),
+                                            self._on_tick)
+        self._announce_timer.shutdown()
+
+    # --- driving ---------------------------------------------------------------------------
+    def _on_tick(self, _event):
+        with self._lock:
+            logs, self._deferred = self._deferred, []
+            logs.extend(self._command_locked())
+            logs.extend(self._share_locked())
+        self._log(logs)
+
+    def _command_locked(self):
+        """Command the robot from its latest pose; return the log lines for after the lock."""
+        if self._pose is None or self._stopped:
+            return []
+        x, y, theta = self._pose
+        decision = decide(x, y, theta, self._limits, self._team)
+        cmd = Twist()
+        cmd.linear.x = decision.linear_mps
+        self._cmd_pub.publish(cmd)
+        logs = []
+        if decision.linear_mps > 0.0 and not self._moved:
+            self._moved = True
+            delay_ms = (rospy.Time.now() - self._go_stamp).to_sec() * 1e3
+            logs.append('Robot %d: first move command %.1f ms after GO' % (self._id, delay_ms))
+        if decision.reason != self._reason:
+            if decision.reason == 'wall':
+                logs.append('Robot %d: wall %.2f m ahead, stopping' % (self._id, decision.wall_m))
+            elif decision.reason == 'teammate':
+                logs.append('Robot %d: robot %d is %.2f m ahead, waiting'
+                            % (self._id, decision.teammate_id, decision.gap_m))
+            elif self._reason is not None:
+                logs.append('Robot %d: path clear, moving on' % self._id)
+            self._reason = decision.reason
+        return logs
+
+    def _share_locked(self):
+        """Publish the robot's position for its teammates; return the nearest-teammate log."""
+        if self._pose is None:
+            return []
+        x, y, theta = self._pose
+        position = RobotPosition()
+        position.header.stamp = rospy.Time.now()
+        position.header.frame_id = 'world'
+        position.robot_id = self._id
+        position.pose.x, position.pose.y, position.pose.theta = x, y, theta
+        self._pos_pub.publish(position)
+        nearest = self._team.nearest(x, y)
+        if nearest is None:
+            return []
+        return [('throttle', 'Robot %d: nearest teammate is robot %d, %.2f m away'
+                 % (self._id, nearest[0].robot_id, nearest[1]))]
+
+    def _log(self, logs):
+        for line in logs:
+            if isinstance(line, tuple):
+                rospy.loginfo_throttle(self._cfg.report_period_s, line[1])
+            else:
+                rospy.loginfo(line)
+
+    def _on_position(self, msg):
+        try:
+            with self._lock:
+                self._team.update(msg.robot_id, msg.pose.x, msg.pose.y, msg.pose.theta,
+                                  msg.header.stamp.to_sec())
+        except ValueError as err:
+            rospy.logwarn_throttle(5.0, 'Robot %d: ignoring teammate position: %s'
+                                   % (self._id, err))
+
+    def _stop(self):
+        # Under the lock, so that no tick can send a non-zero command after the stop.
+        with self._lock:
+            self._stopped = True
+            if self._drive_timer is not None:
+                self._drive_timer.shutdown()
+            self._cmd_pub.publish(Twist())
+
+
+def main(argv=None):
+    """rosrun multi_sync move_robot ROBOT_ID."""
+    robot_id = parse_argv_or_exit(parse_robot_id, argv)
+    rospy.init_node('move_robot_%d' % robot_id)
+    try:
+        config = load_config()
+    except ValueError as err:
+        rospy.logfatal(str(err))
+        sys.exit(1)
+    rospy.loginfo('Robot %d: %s', robot_id, config)
+    MoveRobotNode(robot_id, config)
+    rospy.spin()

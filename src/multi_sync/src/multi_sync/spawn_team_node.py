@@ -1,0 +1,89 @@
+"""Spawns robots robot_<first_id>..robot_<team_size-1> in turtle_lite at the team layout."""
+import sys
+from dataclasses import dataclass
+
+import rospy
+
+from multi_sync.motion import team_layout
+from multi_sync.team import MAX_ROBOTS
+from turtle_lite.srv import Spawn
+
+
+@dataclass(frozen=True)
+class SpawnTeamConfig:
+    """spawn_team's private parameters (see SpawnTeam)."""
+
+    team_size: int = 4
+    first_id: int = 1
+    wait_s: float = 60.0
+
+
+def load_config(get_param=rospy.get_param):
+    """Read and check the private parameters; raise ValueError naming the bad one."""
+    size = get_param('~team_size', SpawnTeamConfig.team_size)
+    first = get_param('~first_id', SpawnTeamConfig.first_id)
+    wait = get_param('~wait_s', SpawnTeamConfig.wait_s)
+    if isinstance(size, bool) or not isinstance(size, int) or not 1 <= size <= MAX_ROBOTS:
+        raise ValueError('parameter ~team_size = %r: expected an integer in 1..%d'
+                         % (size, MAX_ROBOTS))
+    if isinstance(first, bool) or not isinstance(first, int) or not 0 <= first <= size:
+        raise ValueError('parameter ~first_id = %r: expected an integer in 0..team_size (%d)'
+                         % (first, size))
+    if isinstance(wait, bool) or not isinstance(wait, (int, float)) or not 0 < wait < 3600:
+        raise ValueError('parameter ~wait_s = %r: expected a number of seconds in (0, 3600)'
+                         % (wait,))
+    return SpawnTeamConfig(size, first, float(wait))
+
+
+class SpawnTeam:
+    """Calls the simulator's spawn service once per robot, then the node exits.
+
+    A robot whose name already exists is reported and skipped, so relaunching against a
+    running simulator works.
+
+    Subscribes: none.  Publishes: none.
+    Services called:
+        spawn (turtle_lite/Spawn): one call per robot, name robot_<id>, pose from
+            multi_sync.motion.team_layout (heading +x).
+    Parameters (private):
+        ~team_size (int, 4): robots in the team; robots first_id..team_size-1 are spawned.
+        ~first_id (int, 1): first id to spawn (robot_0 is the simulator's turtle1, remapped).
+        ~wait_s (float, 60 s): how long to wait for the spawn service.
+    """
+
+    def __init__(self, config):
+        self._cfg = config
+        self._spawn = rospy.ServiceProxy('spawn', Spawn)
+
+    def run(self):
+        """Spawn the robots; return False when the spawn service never appeared."""
+        try:
+            self._spawn.wait_for_service(self._cfg.wait_s)
+        except rospy.ROSException:
+            rospy.logerr('spawn_team: service %s did not appear within %.0f s'
+                         % (rospy.resolve_name('spawn'), self._cfg.wait_s))
+            return False
+        layout = team_layout(self._cfg.team_size)
+        for robot_id in range(self._cfg.first_id, self._cfg.team_size):
+            x, y, theta = layout[robot_id]
+            name = 'robot_%d' % robot_id
+            try:
+                self._spawn(x, y, theta, name)
+                rospy.loginfo('spawn_team: %s at x=%.3f y=%.3f', name, x, y)
+            except rospy.ServiceException as err:
+                # turtlesim refuses an existing name with an empty error text.
+                rospy.logwarn('spawn_team: could not spawn %s (already there?): %s'
+                              % (name, err))
+        return True
+
+
+def main():
+    """rosrun multi_sync spawn_team _team_size:=N [_first_id:=1]."""
+    rospy.init_node('spawn_team')
+    try:
+        config = load_config()
+    except ValueError as err:
+        rospy.logfatal(str(err))
+        sys.exit(1)
+    if not SpawnTeam(config).run():
+        sys.exit(1)

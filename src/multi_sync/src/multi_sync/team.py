@@ -1,0 +1,125 @@
+"""Team bookkeeping for the synchronisation lesson: argv checks and who is ready (no rospy)."""
+from dataclasses import dataclass, field
+from enum import Enum
+
+# The lesson's MAX_ROBOTS_NUM: team sizes 1..20, robot ids 0..19.
+MAX_ROBOTS = 20
+
+# The lesson's error texts, verbatim (students compare them with the slides).
+MISSING_TEAM_SIZE = 'You must specify team size.'
+BAD_TEAM_SIZE = 'The team size must be an integer number between 1 and %d' % MAX_ROBOTS
+MISSING_ROBOT_ID = 'You must specify robot id.'
+BAD_ROBOT_ID = "The robot's ID must be an integer number between 0 and %d" % (MAX_ROBOTS - 1)
+
+# header.frame_id of the monitor's GO message; robots treat any status with it as GO.
+MONITOR_FRAME_ID = 'monitor'
+
+
+def _parse_int(text):
+    """Return text as an int, or None when it is not a plain decimal integer (no atoi)."""
+    text = text.strip()
+    digits = text[1:] if text[:1] in '+-' else text
+    if not digits.isdigit() or not digits.isascii():
+        return None
+    return int(text)
+
+
+def parse_team_size(args):
+    """Return the team size from the monitor's argv (without the program name).
+
+    Raises ValueError with the lesson's message when it is missing, not an integer or
+    outside 1..MAX_ROBOTS. Unlike the lesson's atoi, '4abc' and '4.0' are rejected.
+    """
+    if not args:
+        raise ValueError(MISSING_TEAM_SIZE)
+    size = _parse_int(args[0])
+    if size is None or not 1 <= size <= MAX_ROBOTS:
+        raise ValueError(BAD_TEAM_SIZE)
+    return size
+
+
+def parse_robot_id(args):
+    """Return the robot id from move_robot's argv (without the program name).
+
+    Raises ValueError with the lesson's message when it is missing, not an integer or
+    outside 0..MAX_ROBOTS-1 (the lesson's check let 20 through: an off-by-one).
+    """
+    if not args:
+        raise ValueError(MISSING_ROBOT_ID)
+    robot_id = _parse_int(args[0])
+    if robot_id is None or not 0 <= robot_id < MAX_ROBOTS:
+        raise ValueError(BAD_ROBOT_ID)
+    return robot_id
+
+
+def valid_robot_id(robot_id):
+    """True when robot_id is an id a team member may have (0..MAX_ROBOTS-1)."""
+    return isinstance(robot_id, int) and 0 <= robot_id < MAX_ROBOTS
+
+
+class Outcome(Enum):
+    """What the monitor should do about one status message."""
+
+    NEW_READY = 'new ready'        # a robot reported ready for the first time; not all yet
+    TEAM_READY = 'team ready'      # this report completed the team: log GO and publish it
+    DUPLICATE = 'duplicate'        # already counted, before GO: nothing to do
+    ANSWER_GO = 'answer go'        # a report after GO: that robot missed GO, send it again
+    NOT_READY = 'not ready'        # is_ready false: ignored
+    BAD_ID = 'bad id'              # id outside 0..MAX_ROBOTS-1: warn and ignore
+    MONITOR = 'monitor'            # a monitor's own message (its GO): ignore
+
+
+@dataclass
+class TeamBook:
+    """The monitor's record of which robots are ready, and whether GO was given.
+
+    GO is given once, when team_size distinct valid ids have reported ready. Any ready
+    report after that is answered with GO again (the robot evidently did not get it).
+    """
+
+    team_size: int
+    ready_ids: set = field(default_factory=set)
+    go_given: bool = False
+    senders: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if isinstance(self.team_size, bool) or not isinstance(self.team_size, int) \
+                or not 1 <= self.team_size <= MAX_ROBOTS:
+            raise ValueError('team_size must be an integer in 1..%d, got %r'
+                             % (MAX_ROBOTS, self.team_size))
+
+    @property
+    def ready_count(self):
+        """How many distinct robots have reported ready."""
+        return len(self.ready_ids)
+
+    def report(self, robot_id, is_ready, frame_id='', sender=''):
+        """Record one RobotStatus (robot_id, is_ready, header.frame_id); return an Outcome.
+
+        sender names the node that sent it ('' if unknown); see unconnected().
+        """
+        if frame_id == MONITOR_FRAME_ID:
+            return Outcome.MONITOR
+        if not valid_robot_id(robot_id):
+            return Outcome.BAD_ID
+        if not is_ready:
+            return Outcome.NOT_READY
+        self.senders[robot_id] = sender
+        if self.go_given:
+            self.ready_ids.add(robot_id)
+            return Outcome.ANSWER_GO
+        if robot_id in self.ready_ids:
+            return Outcome.DUPLICATE
+        self.ready_ids.add(robot_id)
+        if len(self.ready_ids) >= self.team_size:
+            self.go_given = True
+            return Outcome.TEAM_READY
+        return Outcome.NEW_READY
+
+    def unconnected(self, listeners):
+        """Ready robots whose sender is not among listeners (the nodes GO would reach), by id.
+
+        A robot whose sender is unknown ('') cannot be checked and counts as reachable.
+        """
+        return sorted(i for i in self.ready_ids
+                      if self.senders.get(i, '') and self.senders[i] not in listeners)

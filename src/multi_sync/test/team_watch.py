@@ -1,0 +1,162 @@
+"""Helpers for multi_sync's rostest nodes: watch a team on its topics, run nodes, wait."""
+import os
+import signal
+import subprocess
+import threading
+import time
+
+import rospy
+from geometry_msgs.msg import Twist
+from rosgraph_msgs.msg import Log
+
+from multi_sync.msg import RobotPosition, RobotStatus
+from turtle_lite.msg import Pose
+
+# turtlesim's world (metres), for "stopped before the wall" checks.
+WORLD_SIZE_M = (500 - 1) / 45.0
+
+
+def wait_for(predicate, timeout_s, what):
+    """Poll predicate every 20 ms until true; fail naming what was awaited at the deadline."""
+    deadline = time.monotonic() + timeout_s
+    while not predicate():
+        if time.monotonic() > deadline:
+            raise AssertionError('timed out after %.0f s waiting for %s' % (timeout_s, what))
+        if rospy.is_shutdown():
+            raise AssertionError('shut down while waiting for %s' % what)
+        time.sleep(0.02)
+
+
+class TeamWatch:
+    """Records what a user would see of robots 0..n-1: poses, commands, statuses, logs."""
+
+    def __init__(self, n, namespace=''):
+        self.n = n
+        self.lock = threading.Lock()
+        self.first_pose = {}
+        self.pose = {}
+        self.last_cmd = {}
+        self.first_move_wall = {}    # robot id -> wall time of its first non-zero cmd_vel
+        self.ready_counts = {}       # robot id -> ready reports seen on team_status
+        self.go_msgs = []            # (receive wall time, msg) of every GO
+        self.position_ids = set()    # robot ids seen on team_positions
+        self.logs = []               # (node name, text) from /rosout
+        ns = namespace.rstrip('/') + '/' if namespace else ''
+        self._subs = [rospy.Subscriber('/rosout', Log, self._on_log, queue_size=1000)]
+        for i in range(n):
+            self._subs.append(rospy.Subscriber('%srobot_%d/pose' % (ns, i), Pose,
+                                               self._on_pose, i, queue_size=1))
+            self._subs.append(rospy.Subscriber('%srobot_%d/cmd_vel' % (ns, i), Twist,
+                                               self._on_cmd, i, queue_size=10,
+                                               tcp_nodelay=True))
+        self._subs.append(rospy.Subscriber(ns + 'team_status', RobotStatus, self._on_status,
+                                           queue_size=1000, tcp_nodelay=True))
+        self._subs.append(rospy.Subscriber(ns + 'team_positions', RobotPosition,
+                                           self._on_position, queue_size=1000))
+
+    def close(self):
+        for sub in self._subs:
+            sub.unregister()
+
+    def _on_log(self, msg):
+        with self.lock:
+            self.logs.append((msg.name, msg.msg))
+
+    def _on_pose(self, msg, i):
+        with self.lock:
+            self.first_pose.setdefault(i, (msg.x, msg.y))
+            self.pose[i] = (msg.x, msg.y, msg.theta)
+
+    def _on_cmd(self, msg, i):
+        with self.lock:
+            self.last_cmd[i] = msg.linear.x
+            if msg.linear.x != 0.0:
+                self.first_move_wall.setdefault(i, time.time())
+
+    def _on_status(self, msg):
+        with self.lock:
+            if msg.header.frame_id == 'monitor':
+                self.go_msgs.append((time.time(), msg))
+            elif msg.is_ready:
+                self.ready_counts[msg.robot_id] = self.ready_counts.get(msg.robot_id, 0) + 1
+
+    def _on_position(self, msg):
+        with self.lock:
+            self.position_ids.add(msg.robot_id)
+
+    # --- predicates ------------------------------------------------------------------------
+    def ids(self):
+        return range(self.n)
+
+    def have_poses(self):
+        with self.lock:
+            return all(i in self.pose for i in self.ids())
+
+    def announced(self, times):
+        with self.lock:
+            return all(self.ready_counts.get(i, 0) >= times for i in self.ids())
+
+    def moved(self, ids=None):
+        with self.lock:
+            return all(i in self.first_move_wall for i in (self.ids() if ids is None else ids))
+
+    def stopped(self):
+        """Every robot has moved and its latest command is zero."""
+        with self.lock:
+            return all(i in self.first_move_wall and self.last_cmd.get(i) == 0.0
+                       for i in self.ids())
+
+    def go_count(self):
+        with self.lock:
+            return len(self.go_msgs)
+
+    def logged(self, text, node=None):
+        with self.lock:
+            return any(text == m and (node is None or node == name) for name, m in self.logs)
+
+    def log_count(self, text):
+        with self.lock:
+            return sum(1 for _, m in self.logs if m == text)
+
+
+class NodeProcess:
+    """A node run with rosrun as a subprocess, output captured, stopped with SIGINT."""
+
+    def __init__(self, *args, env=None):
+        self.args = ['rosrun', 'multi_sync', *args]
+        full_env = dict(os.environ)
+        full_env.update(env or {})
+        full_env['PYTHONUNBUFFERED'] = '1'
+        self.proc = subprocess.Popen(self.args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     env=full_env, text=True)
+        self.output = []
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            self.output.append(line.rstrip('\n'))
+
+    def printed(self, text):
+        return any(text in line for line in list(self.output))
+
+    def stop(self, timeout_s=15.0):
+        """SIGINT, as Ctrl-C in a terminal; kill if it does not exit in time."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+            try:
+                self.proc.wait(timeout_s)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        self._reader.join(5.0)
+        return self.proc.returncode
+
+
+def run_to_exit(args, timeout_s=60.0, env=None):
+    """Run rosrun multi_sync ARGS to completion; return (exit code, stdout + stderr)."""
+    full_env = dict(os.environ)
+    full_env.update(env or {})
+    done = subprocess.run(['rosrun', 'multi_sync', *args], capture_output=True, text=True,
+                          timeout=timeout_s, env=full_env, check=False)
+    return done.returncode, done.stdout + done.stderr

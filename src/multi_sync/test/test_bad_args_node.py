@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""rostest node: bad argv and parameters of the nodes give the lesson's message and exit 1."""
+import sys
+import unittest
+from concurrent.futures import ThreadPoolExecutor
+
+import rospy
+import rostest
+from team_watch import run_to_exit
+
+TEAM_SIZE_RANGE = 'The team size must be an integer number between 1 and 20'
+ROBOT_ID_RANGE = "The robot's ID must be an integer number between 0 and 19"
+
+CASES = [
+    # (argv after rosrun multi_sync, expected text in the output)
+    (['monitor'], 'You must specify team size.'),
+    (['monitor', '0'], TEAM_SIZE_RANGE),
+    (['monitor', '21'], TEAM_SIZE_RANGE),
+    (['monitor', '-4'], TEAM_SIZE_RANGE),
+    (['monitor', 'four'], TEAM_SIZE_RANGE),
+    (['monitor', '4.5'], TEAM_SIZE_RANGE),
+    (['monitor', '4abc'], TEAM_SIZE_RANGE),
+    (['monitor', ''], TEAM_SIZE_RANGE),
+    (['move_robot'], 'You must specify robot id.'),
+    (['move_robot', '20'], ROBOT_ID_RANGE),
+    (['move_robot', '-1'], ROBOT_ID_RANGE),
+    (['move_robot', 'one'], ROBOT_ID_RANGE),
+    (['move_robot', '1.0'], ROBOT_ID_RANGE),
+    # parameters are checked after init_node: fatal, naming the parameter
+    (['move_robot', '1', '_speed_mps:=-0.2'], 'parameter ~speed_mps = -0.2'),
+    (['move_robot', '1', '_rate_hz:=0'], 'parameter ~rate_hz = 0'),
+    (['move_robot', '1', '_stop_distance_m:=.nan'], 'parameter ~stop_distance_m = nan'),
+    (['move_robot', '1', '_min_gap_m:=far'], "parameter ~min_gap_m = 'far'"),
+    (['move_robot', '1', '_world_size_m:=0.5'], 'parameters ~stop_distance_m and ~world_size_m'),
+    (['spawn_team', '_team_size:=21'], 'parameter ~team_size = 21'),
+    (['spawn_team', '_team_size:=4', '_first_id:=5'], 'parameter ~first_id = 5'),
+]
+
+
+class TestBadArgs(unittest.TestCase):
+    """Each bad command line exits non-zero with a message a student can act on."""
+
+    def test_bad_command_lines(self):
+        # A node name of its own per case: private parameters stay on the parameter server.
+        # Four at a time: each run is mostly Python start-up.
+        with ThreadPoolExecutor(max_workers=4) as pool:
+            results = list(pool.map(lambda k: run_to_exit([*CASES[k][0], '__name:=bad_%d' % k]),
+                                    range(len(CASES))))
+        for (args, expected), (code, output) in zip(CASES, results, strict=True):
+            with self.subTest(args=args):
+                self.assertNotEqual(code, 0, output)
+                self.assertIn(expected, output)
+                self.assertNotIn('Traceback', output)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_bad_args')
+    rostest.rosrun('multi_sync', 'bad_args', TestBadArgs, sys.argv)
