@@ -82,25 +82,29 @@ cmd_unit() {
 
 cmd_integration() {
   source_devel
-  mkdir -p "$RESULTS_DIR"
   local files=("$@")
   ((${#files[@]})) || files=(src/*/test/*.test)
-  local failed=0 f pkg name
+  local failed=0 f dir
   for f in "${files[@]}"; do
-    pkg=$(basename "$(dirname "$(dirname "$f")")")
-    name=$(basename "$f" .test)
-    echo "integration: $pkg/$name"
-    rm -f "$RESULTS_DIR/$pkg/rostest-$pkg-$name.xml"
+    dir=$(integration_results_dir "$f")
+    echo "integration: ${dir#"$RESULTS_DIR/"}"
+    rm -rf "$dir" && mkdir -p "$dir"
     # rostest limits each test node itself (time-limit); the outer timeout catches a hung launch.
-    timeout --kill-after=10 600 rostest --results-base-dir="$RESULTS_DIR" \
-      --results-filename="rostest-$pkg-$name.xml" "$pkg" "$name.test" \
-      >"$RESULTS_DIR/rostest-$pkg-$name.log" 2>&1 || { failed=1; tail -n 30 "$RESULTS_DIR/rostest-$pkg-$name.log"; }
+    timeout --kill-after=10 600 rostest --results-base-dir="$dir" \
+      "$(package_of "$f")" "$(basename "$f")" >"$dir/rostest.log" 2>&1 \
+      || { failed=1; tail -n 30 "$dir/rostest.log"; }
   done
   return $failed
 }
 
+# src/<pkg>/test/<name>.test -> <pkg>
+package_of() { basename "$(dirname "$(dirname "$1")")"; }
+
+# Each .test file reports into a directory of its own, so test names never collide.
+integration_results_dir() { echo "$RESULTS_DIR/integration/$(package_of "$1")/$(basename "$1" .test)"; }
+
 cmd_summary() {
-  /usr/bin/python3 tools/test_summary.py "$RESULTS_DIR" "$@"
+  /usr/bin/python3 tools/test_summary.py "$@"
 }
 
 cmd_test() {
@@ -111,10 +115,9 @@ cmd_test() {
   cmd_lint || lint_ok=0
   cmd_unit || true
   cmd_integration || true
-  local expected=(--expect unit.xml) f pkg
+  local expected=(--junit "$RESULTS_DIR/unit.xml") f
   for f in src/*/test/*.test; do
-    pkg=$(basename "$(dirname "$(dirname "$f")")")
-    expected+=(--expect "$pkg/rostest-$pkg-$(basename "$f" .test).xml")
+    expected+=(--rostest "$(integration_results_dir "$f")")
   done
   ((lint_ok)) || expected+=(--failed-step lint)
   cmd_summary "${expected[@]}"
