@@ -33,6 +33,7 @@ import rospy
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty, EmptyResponse
 
+from turtle_lite.frames import send_frame
 from turtle_lite.msg import Color, Pose
 from turtle_lite.srv import (
     Kill,
@@ -110,8 +111,8 @@ def _tick_publisher(name, msg_class):
 
     rospy's queue_size wraps every connection in a QueuedConnection: one thread per
     subscriber, woken for each message, plus a sleep(0) per write. At 62.5 Hz per turtle
-    that dominated the node's CPU. A 20-byte message every 16 ms cannot fill a socket buffer
-    of a live subscriber, so the tick thread writes directly (rospy's pre-Hydro behaviour).
+    that dominated the node's CPU, so the tick thread writes the frames itself, never
+    blocking (see _write_frame).
     Setting the impl's queue size after construction avoids rospy's warning about a missing
     queue_size; connections made from now on are plain transports.
     """
@@ -504,18 +505,22 @@ def _write_frame(pub, frame):
 
     This is what rospy's _PublisherImpl.publish does after serialising, without the
     per-call checks, buffer juggling and message object: the tick sends up to 62.5 x 2 x N
-    messages a second and that overhead was most of the node's CPU. A connection that fails
-    is removed, as rospy does.
+    messages a second and that overhead was most of the node's CPU. Unlike rospy's blocking
+    sendall, a subscriber that stops reading only loses frames (as with roscpp's queue of 1)
+    and never stalls the tick; a connection that fails, or took half a frame, is closed.
     """
     impl = pub.impl
     if impl is None or impl.closed:
         return  # unregistered (killed) between the step and the publish
     for conn in impl.connections:
         try:
-            conn.write_data(frame)
+            if send_frame(conn.socket, frame):
+                conn.stat_bytes += len(frame)
+                conn.stat_num_msg += 1
         except Exception:
             with contextlib.suppress(Exception):
                 impl.remove_connection(conn)
+                conn.close()
 
 
 def _cheap_rosout():
