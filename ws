@@ -47,6 +47,19 @@ cmd_build() {
     -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON "$@"
 }
 
+# The build as a step of demo/test: its log goes to a file, shown only if it fails.
+build_step() {
+  mkdir -p "$BUILD_DIR"
+  local log="$ROOT/$BUILD_DIR/catkin_make.log"
+  if cmd_build >"$log" 2>&1; then
+    echo "build: ok (log: $log)"
+  else
+    tail -n 60 "$log" >&2
+    echo "build: FAILED (log: $log)" >&2
+    return 1
+  fi
+}
+
 lint_venv() {
   if [[ ! -x $LINT_VENV/bin/ruff ]] || ! cmp -s tools/lint-requirements.txt "$LINT_VENV/requirements.txt"; then
     echo "lint: installing linters into $LINT_VENV"
@@ -109,7 +122,7 @@ cmd_summary() {
 
 cmd_test() {
   cmd_deps
-  cmd_build
+  build_step
   rm -rf "$RESULTS_DIR"
   local lint_ok=1
   cmd_lint || lint_ok=0
@@ -125,7 +138,7 @@ cmd_test() {
 
 cmd_demo() {
   cmd_deps
-  cmd_build
+  build_step
   source_devel
   rosrun convoy convoy_demo --out "$ROOT/$BUILD_DIR/demo" "$@"
 }
