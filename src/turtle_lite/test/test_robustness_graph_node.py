@@ -1,15 +1,18 @@
 #!/usr/bin/env python3
 """The simulator in the ROS graph: namespaces, remaps, private params, rosnode kill."""
 
-import threading
 import unittest
 
 import rospy
 import rostest
-from test_tools_support import (
+from sim_support import (
+    DEFAULT_BG,
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
-    PoseWatcher,
+    TURTLE_SERVICES,
+    TURTLE_TOPICS,
+    PoseRecorder,
+    Recorder,
     Tool,
     graph_names,
     kill_node,
@@ -22,32 +25,23 @@ from turtle_lite.msg import Color
 from turtle_lite.srv import Kill, Spawn
 
 NODE_SERVICES = ("clear", "reset", "spawn", "kill")
-TURTLE_TOPICS = ("cmd_vel", "pose", "color_sensor")
-TURTLE_SERVICES = ("set_pen", "teleport_relative", "teleport_absolute")
-DEFAULT_BACKGROUND = (69, 86, 255)
 
 
 def first_color(topic):
-    """The first Color message on topic."""
-    got = []
-    lock = threading.Lock()
-
-    def on_color(msg):
-        with lock:
-            got.append((msg.r, msg.g, msg.b))
-
-    sub = rospy.Subscriber(topic, Color, on_color, queue_size=1)
+    """The (r, g, b) of the first Color message on topic."""
+    colors = Recorder(topic, Color, queue_size=1)
     try:
-        return wait_for(lambda: got, EVENT_DEADLINE_S, f"a colour on {topic}")[0]
+        first = wait_for(colors.messages, EVENT_DEADLINE_S, f"a colour on {topic}")[0]
     finally:
-        sub.unregister()
+        colors.close()
+    return first.r, first.g, first.b
 
 
 class RobustnessGraphTest(unittest.TestCase):
     def setUp(self):
-        self.pose = PoseWatcher("/g1/turtle1/pose")
+        self.pose = PoseRecorder("/g1/turtle1/pose")
         self.addCleanup(self.pose.close)
-        self.pose.wait_pose(lambda p: True, "the first pose", START_DEADLINE_S)
+        self.pose.wait_latest(lambda p: True, "the first pose", START_DEADLINE_S)
 
     def assert_turtle_at(self, namespace):
         topics, svcs = graph_names()
@@ -74,7 +68,7 @@ class RobustnessGraphTest(unittest.TestCase):
         # background_g = "green" (launch file): a warning, and the default 86 is used, so a
         # turtle at rest on the fresh canvas senses turtlesim's default background.
         self.assertEqual(rospy.get_param("/g1/sim/background_g"), "green")
-        self.assertEqual(first_color("/g1/turtle1/color_sensor"), DEFAULT_BACKGROUND)
+        self.assertEqual(first_color("/g1/turtle1/color_sensor"), DEFAULT_BG)
 
     def test_relative_remap_applies_to_later_spawns(self):
         spawn = rospy.ServiceProxy("/g1/spawn", Spawn)
@@ -108,7 +102,7 @@ class RobustnessGraphTest(unittest.TestCase):
         self.assertEqual(rospy.get_param("/ns2/turtlesim/background_r"), 69)
         self.assertIn("WARN", sim.wait_line("background_b"))
         self.assertIn("WARN", sim.wait_line("gui"))
-        self.assertEqual(first_color("/ns2/robot1/color_sensor"), DEFAULT_BACKGROUND)
+        self.assertEqual(first_color("/ns2/robot1/color_sensor"), DEFAULT_BG)
 
         kill_node("/ns2/turtlesim")
         self.assertEqual(sim.wait_exit(EVENT_DEADLINE_S), 0)

@@ -3,26 +3,27 @@
 
 import math
 import threading
-import unittest
 
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
-from std_srvs.srv import Empty
-from test_tools_support import (
+from sim_support import (
+    CENTER,
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
-    LogWatcher,
-    PoseWatcher,
+    LogRecorder,
+    PoseRecorder,
+    SimTestCase,
     graph_names,
     published_topics,
+    turtle_graph_names,
+    wait_connected,
     wait_for,
 )
 
 from turtle_lite.srv import Kill, Spawn, TeleportAbsolute, TeleportRelative
 
-CENTRE = 5.5444446
 POSE_TOL = 1e-4
 BAD_NUMBERS = (math.nan, math.inf, -math.inf)
 TICKS_AFTER_BAD_INPUT = 30  # poses to watch after the last bad command (about 0.5 s)
@@ -31,31 +32,23 @@ THREADS = 4  # concurrent spawn/kill clients
 PER_THREAD = 10
 
 
-def resources(name):
-    """The six graph names of a root-namespace turtle, split into (topics, services)."""
-    topics = {f"/{name}/{t}" for t in ("cmd_vel", "pose", "color_sensor")}
-    services = {f"/{name}/{s}" for s in ("set_pen", "teleport_relative", "teleport_absolute")}
-    return topics, services
-
-
 def turtles_on_master():
     """Turtle names whose pose topic is published."""
     return {t.split("/")[1] for t in published_topics() if t.endswith("/pose")}
 
 
-class RobustnessInputTest(unittest.TestCase):
+class RobustnessInputTest(SimTestCase):
+    RECORD_TURTLE1 = False  # each test records turtle1's poses afresh, in setUp
+
     @classmethod
     def setUpClass(cls):
-        rospy.wait_for_service("/spawn", START_DEADLINE_S)
-        cls.spawn = rospy.ServiceProxy("/spawn", Spawn)
-        cls.kill = rospy.ServiceProxy("/kill", Kill)
-        cls.reset = rospy.ServiceProxy("/reset", Empty)
-        cls.logs = LogWatcher()
+        super().setUpClass()
+        cls.logs = LogRecorder("/turtlesim")
 
     def setUp(self):
-        self.pose = PoseWatcher("/turtle1/pose")
+        self.pose = PoseRecorder("/turtle1/pose")
         self.addCleanup(self.pose.close)
-        self.pose.wait_pose(lambda p: True, "a first pose", START_DEADLINE_S)
+        self.pose.wait_latest(lambda p: True, "a first pose", START_DEADLINE_S)
 
     def assert_poses_finite(self, poses):
         for p in poses:
@@ -67,13 +60,12 @@ class RobustnessInputTest(unittest.TestCase):
         wait_for(lambda: self.pose.count() >= target, EVENT_DEADLINE_S, what)
 
     def test_non_finite_cmd_vel_never_reaches_a_pose(self):
-        self.pose.wait_pose(lambda p: p.linear_velocity == 0 and p.angular_velocity == 0,
-                            "turtle1 at rest")
+        self.pose.wait_latest(lambda p: p.linear_velocity == 0 and p.angular_velocity == 0,
+                              "turtle1 at rest")
         before = self.pose.latest()
         pub = rospy.Publisher("/turtle1/cmd_vel", Twist, queue_size=10)
         self.addCleanup(pub.unregister)
-        wait_for(lambda: pub.get_num_connections() > 0, START_DEADLINE_S,
-                 "the simulator to subscribe /turtle1/cmd_vel")
+        wait_connected(pub, "the simulator to subscribe /turtle1/cmd_vel")
         self.pose.clear()
         rate = rospy.Rate(50)
         for bad in BAD_NUMBERS:
@@ -85,15 +77,15 @@ class RobustnessInputTest(unittest.TestCase):
                 pub.publish(twist)
                 rate.sleep()
         self.wait_more_poses(TICKS_AFTER_BAD_INPUT, "poses after the bad commands")
-        poses = self.pose.poses()
+        poses = self.pose.messages()
         self.assert_poses_finite(poses)
         self.assertAlmostEqual(poses[-1].x, before.x, delta=POSE_TOL)
-        self.logs.wait_log("Ignoring cmd_vel", "/turtlesim")
+        self.logs.wait_log("Ignoring cmd_vel")
         # Still alive and listening: a good command moves the turtle.
         good = Twist()
         good.angular.z = 0.5
         pub.publish(good)
-        self.pose.wait_pose(lambda p: p.angular_velocity == 0.5, "the good command applied")
+        self.pose.wait_latest(lambda p: p.angular_velocity == 0.5, "the good command applied")
 
     def test_non_finite_teleports_fail_and_never_reach_a_pose(self):
         absolute = rospy.ServiceProxy("/turtle1/teleport_absolute", TeleportAbsolute)
@@ -109,12 +101,12 @@ class RobustnessInputTest(unittest.TestCase):
             with self.assertRaises(rospy.ServiceException):
                 self.spawn(bad, 1.0, 0.0, "")
         self.wait_more_poses(TICKS_AFTER_BAD_INPUT, "poses after the bad teleports")
-        self.assert_poses_finite(self.pose.poses())
+        self.assert_poses_finite(self.pose.messages())
         self.assertEqual(turtles_on_master(), {"turtle1"}, "a bad spawn created a turtle")
         # The services still work with good numbers.
         absolute(3.0, 4.0, 0.5)
-        self.pose.wait_pose(lambda p: abs(p.x - 3.0) < POSE_TOL and abs(p.y - 4.0) < POSE_TOL,
-                            "the good teleport")
+        self.pose.wait_latest(lambda p: abs(p.x - 3.0) < POSE_TOL and abs(p.y - 4.0) < POSE_TOL,
+                              "the good teleport")
 
     def test_bad_spawn_and_kill_names_fail_cleanly(self):
         for name, log in (("turtle1", "A turtled named [turtle1] already exists"),
@@ -122,32 +114,31 @@ class RobustnessInputTest(unittest.TestCase):
                           ("1abc", "Character [1] is not valid as the first character")):
             with self.assertRaises(rospy.ServiceException, msg=name):
                 self.spawn(1.0, 1.0, 0.0, name)
-            self.assertEqual(self.logs.wait_log(log, "/turtlesim")[1], Log.ERROR)
+            self.assertEqual(self.logs.wait_log(log).level, Log.ERROR)
         for name in ("nobody", "", "/turtle1"):
             with self.assertRaises(rospy.ServiceException, msg=name):
                 self.kill(name)
-            self.logs.wait_log(f"Tried to kill turtle [{name}], which does not exist",
-                               "/turtlesim")
+            self.logs.wait_log(f"Tried to kill turtle [{name}], which does not exist")
         self.assertEqual(turtles_on_master(), {"turtle1"})
         self.wait_more_poses(5, "turtle1 still publishing")
 
     def test_kill_and_reset_unregister_from_the_master(self):
         names = [self.spawn(2.0, 2.0, 0.0, n).name for n in ("tk_a", "tk_b")]
         for name in names:
-            topics, services = resources(name)
+            topics, services = turtle_graph_names(f"/{name}")
             wait_for(lambda t=topics, s=services: t <= graph_names()[0] and s <= graph_names()[1],
                      EVENT_DEADLINE_S, f"the resources of {name} on the master")
         self.kill("tk_a")
-        topics, services = resources("tk_a")
+        topics, services = turtle_graph_names("/tk_a")
         wait_for(lambda: not (topics & graph_names()[0]) and not (services & graph_names()[1]),
                  EVENT_DEADLINE_S, "tk_a's topics and services to leave the master")
         self.reset()
-        topics, services = resources("tk_b")
+        topics, services = turtle_graph_names("/tk_b")
         wait_for(lambda: not (topics & graph_names()[0]) and not (services & graph_names()[1]),
                  EVENT_DEADLINE_S, "reset to remove tk_b's topics and services")
         self.assertEqual(turtles_on_master(), {"turtle1"})
-        self.pose.wait_pose(lambda p: abs(p.x - CENTRE) < POSE_TOL and p.theta == 0,
-                            "turtle1 back at the centre after reset")
+        self.pose.wait_latest(lambda p: abs(p.x - CENTER) < POSE_TOL and p.theta == 0,
+                              "turtle1 back at the centre after reset")
         self.assertEqual(self.spawn(1.0, 1.0, 0.0, "").name, "turtle2")
         self.kill("turtle2")
 
@@ -186,10 +177,10 @@ class RobustnessInputTest(unittest.TestCase):
         wait_for(lambda: turtles_on_master() == expected, EVENT_DEADLINE_S,
                  f"exactly {len(expected)} turtles on the master")
         # Every survivor still publishes its own pose, where it was spawned.
-        watchers = {n: PoseWatcher(f"/{n}/pose", keep=5) for n in alive}
+        watchers = {n: PoseRecorder(f"/{n}/pose", keep=5) for n in alive}
         try:
             for name, (x, y) in alive.items():
-                pose = watchers[name].wait_pose(lambda p: True, f"a pose from {name}")
+                pose = watchers[name].wait_latest(lambda p: True, f"a pose from {name}")
                 self.assertAlmostEqual(pose.x, x, delta=POSE_TOL, msg=name)
                 self.assertAlmostEqual(pose.y, y, delta=POSE_TOL, msg=name)
         finally:

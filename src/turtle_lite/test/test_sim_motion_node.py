@@ -4,7 +4,6 @@
 import math
 import re
 import time
-import unittest
 
 import rospy
 import rostest
@@ -16,17 +15,12 @@ from sim_support import (
     DEFAULT_PEN,
     EVENT_DEADLINE_S,
     POSE_TOL,
-    START_DEADLINE_S,
     WORLD,
-    ColorRecorder,
-    LogRecorder,
     PoseRecorder,
+    SimTestCase,
     wait_connected,
     wait_for,
 )
-from std_srvs.srv import Empty
-
-from turtle_lite.srv import Spawn, TeleportAbsolute, TeleportRelative
 
 WALL_RE = re.compile(r'^Oh no! I hit the wall! \(Clamping from \[x=(-?\d+\.\d{6}), '
                      r'y=(-?\d+\.\d{6})\]\)$')
@@ -40,21 +34,12 @@ def twist(vx=0.0, vy=0.0, w=0.0):
     return msg
 
 
-class SimMotionTest(unittest.TestCase):
+class SimMotionTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_sim_motion')
-        rospy.wait_for_service('/reset', START_DEADLINE_S)
-        cls.reset = rospy.ServiceProxy('/reset', Empty)
-        cls.spawn = rospy.ServiceProxy('/spawn', Spawn)
-        cls.absolute = rospy.ServiceProxy('/turtle1/teleport_absolute', TeleportAbsolute)
-        cls.relative = rospy.ServiceProxy('/turtle1/teleport_relative', TeleportRelative)
-        cls.pose = PoseRecorder()
-        cls.color = ColorRecorder()
-        cls.logs = LogRecorder()
+        super().setUpClass()
         cls.cmd = rospy.Publisher('/turtle1/cmd_vel', Twist, queue_size=1)
         wait_connected(cls.cmd, 'turtlesim to subscribe /turtle1/cmd_vel')
-        wait_for(lambda: cls.pose.count() > 0, START_DEADLINE_S, 'the first pose')
 
     def setUp(self):
         self.reset()
@@ -107,7 +92,7 @@ class SimMotionTest(unittest.TestCase):
             self.assertAlmostEqual(pose.theta, expected, delta=2e-7)
         self.spawn(2.0, 2.0, 7.0, 'wrap7')
         wrap7 = PoseRecorder('/wrap7/pose')
-        self.addCleanup(wrap7.sub.unregister)
+        self.addCleanup(wrap7.close)
         pose = wrap7.wait(lambda p: True, 'a pose of wrap7')
         self.assertAlmostEqual(pose.theta, 0.7168147, delta=2e-7)
 
@@ -190,4 +175,5 @@ class SimMotionTest(unittest.TestCase):
 
 
 if __name__ == '__main__':
+    rospy.init_node('test_sim_motion')
     rostest.rosrun('turtle_lite', 'sim_motion', SimMotionTest)

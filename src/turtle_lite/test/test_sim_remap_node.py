@@ -1,8 +1,6 @@
 #!/usr/bin/env python3
 """<remap from="/turtle1" to="/robot1"/> moves all of turtle1 (TURTLESIM.md 1.9, item 15)."""
 
-import unittest
-
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
@@ -11,40 +9,30 @@ from sim_support import (
     EVENT_DEADLINE_S,
     POSE_TOL,
     START_DEADLINE_S,
+    TURTLE_RESOURCES,
     PoseRecorder,
-    graph_names,
+    SimTestCase,
+    names_under,
+    wait_connected,
     wait_for,
 )
-from std_srvs.srv import Empty
 
-from turtle_lite.srv import Kill, Spawn, TeleportAbsolute
-
-SIX = ('cmd_vel', 'pose', 'color_sensor', 'set_pen', 'teleport_relative', 'teleport_absolute')
+from turtle_lite.srv import TeleportAbsolute
 
 
-def names_under(prefix):
-    topics, services = graph_names()
-    return {n for n in topics | services if n.startswith(prefix + '/')}
-
-
-class SimRemapTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node('test_sim_remap')
-        rospy.wait_for_service('/spawn', START_DEADLINE_S)
-        cls.spawn = rospy.ServiceProxy('/spawn', Spawn)
-        cls.kill = rospy.ServiceProxy('/kill', Kill)
-        cls.reset = rospy.ServiceProxy('/reset', Empty)
+class SimRemapTest(SimTestCase):
+    # turtle1 lives under /robot1 here: recording /turtle1/* would put it on the master.
+    RECORD_TURTLE1 = False
 
     def test_namespace_remap_keeps_the_turtle_name(self):
         wait_for(lambda: len(names_under('/robot1')) == 6, START_DEADLINE_S,
                  'six resources under /robot1')
-        self.assertEqual(names_under('/robot1'), {'/robot1/' + r for r in SIX})
+        self.assertEqual(names_under('/robot1'), {'/robot1/' + r for r in TURTLE_RESOURCES})
         self.assertEqual(names_under('/turtle1'), set())
 
         pose = PoseRecorder('/robot1/pose')
         pub = rospy.Publisher('/robot1/cmd_vel', Twist, queue_size=1)
-        wait_for(lambda: pub.get_num_connections() > 0, START_DEADLINE_S, '/robot1/cmd_vel')
+        wait_connected(pub, '/robot1/cmd_vel')
         msg = Twist()
         msg.angular.z = 1.0
         pub.publish(msg)
@@ -67,10 +55,11 @@ class SimRemapTest(unittest.TestCase):
 
         # Our own publisher and subscriber keep their topics on the master: drop them first.
         pub.unregister()
-        pose.sub.unregister()
+        pose.close()
         self.kill('turtle1')
         wait_for(lambda: not names_under('/robot1'), EVENT_DEADLINE_S, '/robot1 to go')
 
 
 if __name__ == '__main__':
+    rospy.init_node('test_sim_remap')
     rostest.rosrun('turtle_lite', 'sim_remap', SimRemapTest)

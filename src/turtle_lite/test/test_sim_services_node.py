@@ -5,7 +5,6 @@ import os
 import shutil
 import tempfile
 import threading
-import unittest
 
 import numpy as np
 import rospy
@@ -17,47 +16,24 @@ from sim_support import (
     DEFAULT_BG,
     DEFAULT_PEN,
     POSE_TOL,
-    START_DEADLINE_S,
     WORLD,
-    ColorRecorder,
-    LogRecorder,
     PoseRecorder,
+    SimTestCase,
     graph_names,
+    has_turtle_at,
+    names_under,
+    wait_connected,
     wait_for,
 )
-from std_srvs.srv import Empty
 
 from turtle_lite.srv import Kill, SaveImage, SetPen, Spawn, TeleportAbsolute
 
-SIX = ('cmd_vel', 'pose', 'color_sensor', 'set_pen', 'teleport_relative', 'teleport_absolute')
 
-
-def has_turtle_at(namespace):
-    topics, services = graph_names()
-    return all(namespace + '/' + r in topics | services for r in SIX)
-
-
-def has_nothing_at(namespace):
-    topics, services = graph_names()
-    return not any(n.startswith(namespace + '/') for n in topics | services)
-
-
-class SimServicesTest(unittest.TestCase):
+class SimServicesTest(SimTestCase):
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('test_sim_services')
-        rospy.wait_for_service('/reset', START_DEADLINE_S)
-        cls.reset = rospy.ServiceProxy('/reset', Empty)
-        cls.clear = rospy.ServiceProxy('/clear', Empty)
-        cls.spawn = rospy.ServiceProxy('/spawn', Spawn)
-        cls.kill = rospy.ServiceProxy('/kill', Kill)
-        cls.set_pen = rospy.ServiceProxy('/turtle1/set_pen', SetPen)
-        cls.absolute = rospy.ServiceProxy('/turtle1/teleport_absolute', TeleportAbsolute)
+        super().setUpClass()
         cls.save_image = rospy.ServiceProxy('/turtlesim/save_image', SaveImage)
-        cls.pose = PoseRecorder()
-        cls.color = ColorRecorder()
-        cls.logs = LogRecorder()
-        wait_for(lambda: cls.pose.count() > 0, START_DEADLINE_S, 'the first pose')
         cls.tmp = tempfile.mkdtemp(prefix='turtle_lite_test_')
 
     @classmethod
@@ -111,7 +87,7 @@ class SimServicesTest(unittest.TestCase):
             wait_for(lambda ns=namespace: has_turtle_at(ns), 10, 'resources under ' + namespace)
         self.assert_fails(self.kill, 'abs')  # the registry key is the raw string
         self.kill('/abs')
-        wait_for(lambda: has_nothing_at('/abs'), 10, '/abs to be unregistered')
+        wait_for(lambda: not names_under('/abs'), 10, '/abs to be unregistered')
 
     def test_spawn_is_not_validated_but_clamped_on_first_tick(self):
         """Item 11."""
@@ -121,7 +97,7 @@ class SimServicesTest(unittest.TestCase):
         self.logs.wait_line('Oh no! I hit the wall! (Clamping from [x=-2.000000, '
                             'y=-8.911111])', Log.WARN)
         clampy = PoseRecorder('/clampy/pose')
-        self.addCleanup(clampy.sub.unregister)
+        self.addCleanup(clampy.close)
         pose = clampy.wait(lambda p: True, 'a pose of clampy')
         self.assertEqual(pose.x, 0.0)
         self.assertAlmostEqual(pose.y, WORLD, delta=POSE_TOL)
@@ -136,7 +112,7 @@ class SimServicesTest(unittest.TestCase):
         self.pose.wait(lambda p: abs(p.x - 2.0) < POSE_TOL, 'turtle1 moved away')
         rospy.set_param('/turtlesim/background_r', 10)
         self.reset()
-        wait_for(lambda: has_nothing_at('/extra'), 10, '/extra to be unregistered by reset')
+        wait_for(lambda: not names_under('/extra'), 10, '/extra to be unregistered by reset')
         pose = self.pose.wait(lambda p: abs(p.x - CENTER) < POSE_TOL, 'turtle1 respawned')
         self.assertAlmostEqual(pose.y, CENTER, delta=POSE_TOL)
         self.assertEqual(pose.theta, 0.0)
@@ -276,7 +252,7 @@ class SimServicesTest(unittest.TestCase):
         from geometry_msgs.msg import Twist
         pub = rospy.Publisher('/turtle1/cmd_vel', Twist, queue_size=1)
         self.addCleanup(pub.unregister)
-        wait_for(lambda: pub.get_num_connections() > 0, START_DEADLINE_S, 'cmd_vel link')
+        wait_connected(pub, 'cmd_vel link')
         msg = Twist()
         msg.linear.x = 2.0
         pub.publish(msg)
@@ -285,4 +261,5 @@ class SimServicesTest(unittest.TestCase):
 
 
 if __name__ == '__main__':
+    rospy.init_node('test_sim_services')
     rostest.rosrun('turtle_lite', 'sim_services', SimServicesTest)

@@ -6,10 +6,11 @@ import unittest
 
 import rospy
 import rostest
-from test_tools_support import (
+from sim_support import (
+    CENTER,
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
-    PoseWatcher,
+    PoseRecorder,
     Tool,
     published_topics,
     subscribed_topics,
@@ -18,7 +19,6 @@ from test_tools_support import (
 
 from turtle_lite.srv import Spawn, TeleportAbsolute
 
-CENTRE = 5.5444446
 POSE_TOL = 1e-4  # float32 poses, printed goals with 6 decimals
 # The side takes about 2 s of pose ticks, the turn about 4 s; allow for a loaded machine.
 SIDE_DEADLINE_S = 40.0
@@ -27,14 +27,14 @@ SIDE_DEADLINE_S = 40.0
 class DrawSquareTest(unittest.TestCase):
     def setUp(self):
         rospy.wait_for_service("/turtle1/teleport_absolute", START_DEADLINE_S)
-        self.pose = PoseWatcher("/turtle1/pose")
+        self.pose = PoseRecorder("/turtle1/pose")
         self.addCleanup(self.pose.close)
 
     def test_resets_then_drives_the_first_side_and_turns(self):
         # A scene that only a reset undoes: turtle1 moved away and a second turtle.
         rospy.ServiceProxy("/turtle1/teleport_absolute", TeleportAbsolute)(2.0, 3.0, 1.0)
         rospy.ServiceProxy("/spawn", Spawn)(8.0, 8.0, 0.0, "turtle2")
-        self.pose.wait_pose(lambda p: abs(p.x - 2.0) < POSE_TOL, "the teleported turtle1")
+        self.pose.wait_latest(lambda p: abs(p.x - 2.0) < POSE_TOL, "the teleported turtle1")
         wait_for(lambda: "/turtle2/pose" in published_topics(), EVENT_DEADLINE_S,
                  "/turtle2/pose to be advertised")
 
@@ -52,16 +52,16 @@ class DrawSquareTest(unittest.TestCase):
                           "the second goal")[0]
         x, y, theta = (float(v) for v in
                        second.split("New goal [")[1].rstrip("]").replace(",", "").split())
-        self.assertAlmostEqual(y, CENTRE, delta=POSE_TOL)
-        self.assertLess(abs(x - (CENTRE + 2.0)), 0.1)
+        self.assertAlmostEqual(y, CENTER, delta=POSE_TOL)
+        self.assertLess(abs(x - (CENTER + 2.0)), 0.1)
         self.assertAlmostEqual(theta, 1.570796, delta=1e-6)
         stopped = self.pose.latest()
-        self.assertAlmostEqual(stopped.y, CENTRE, delta=POSE_TOL)
-        self.assertLess(abs(stopped.x - (CENTRE + 2.0)), 0.1)
+        self.assertAlmostEqual(stopped.y, CENTER, delta=POSE_TOL)
+        self.assertLess(abs(stopped.x - (CENTER + 2.0)), 0.1)
 
         # Then it turns on the spot, counter-clockwise, towards +y.
-        turning = self.pose.wait_pose(lambda p: p.theta > 0.5, "turtle1 turning left",
-                                      SIDE_DEADLINE_S)
+        turning = self.pose.wait_latest(lambda p: p.theta > 0.5, "turtle1 turning left",
+                                        SIDE_DEADLINE_S)
         self.assertAlmostEqual(turning.x, x, delta=POSE_TOL)
         self.assertAlmostEqual(turning.angular_velocity, 0.4, delta=1e-6)
         self.assertTrue(math.isclose(turning.linear_velocity, 0.0, abs_tol=1e-9))

@@ -7,11 +7,10 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
-from test_tools_support import START_DEADLINE_S, PoseWatcher, wait_for
+from sim_support import CENTER, START_DEADLINE_S, PoseRecorder, wait_for
 
 from turtle_lite.srv import TeleportAbsolute
 
-CENTRE = 5.5444446
 DISTANCE_M = 0.5  # how far both turtles must have gone to count as moving
 POSE_TOL = 1e-4
 DRIVE_DEADLINE_S = 30.0
@@ -42,8 +41,8 @@ class Driver:
 
 class MimicTest(unittest.TestCase):
     def setUp(self):
-        self.leader = PoseWatcher("/turtlesim1/turtle1/pose")
-        self.follower = PoseWatcher("/turtlesim2/turtle1/pose")
+        self.leader = PoseRecorder("/turtlesim1/turtle1/pose")
+        self.follower = PoseRecorder("/turtlesim2/turtle1/pose")
         self.addCleanup(self.leader.close)
         self.addCleanup(self.follower.close)
         wait_for(lambda: self.leader.latest() and self.follower.latest(), START_DEADLINE_S,
@@ -51,13 +50,13 @@ class MimicTest(unittest.TestCase):
         # Each test starts from rest at the centre: wait out the 1 s cmd_vel timeout of the
         # previous test, then teleport both turtles home.
         for watcher, sim in ((self.leader, "turtlesim1"), (self.follower, "turtlesim2")):
-            watcher.wait_pose(lambda p: p.linear_velocity == 0 and p.angular_velocity == 0,
-                              "the turtle at rest")
+            watcher.wait_latest(lambda p: p.linear_velocity == 0 and p.angular_velocity == 0,
+                                "the turtle at rest")
             service = f"/{sim}/turtle1/teleport_absolute"
             rospy.wait_for_service(service, START_DEADLINE_S)
-            rospy.ServiceProxy(service, TeleportAbsolute)(CENTRE, CENTRE, 0.0)
-            watcher.wait_pose(lambda p: abs(p.x - CENTRE) < POSE_TOL and abs(p.y - CENTRE) <
-                              POSE_TOL and p.theta == 0, "the turtle back at the centre")
+            rospy.ServiceProxy(service, TeleportAbsolute)(CENTER, CENTER, 0.0)
+            watcher.wait_latest(lambda p: abs(p.x - CENTER) < POSE_TOL and abs(p.y - CENTER) <
+                                POSE_TOL and p.theta == 0, "the turtle back at the centre")
 
     def drive(self, linear, angular):
         driver = Driver(linear, angular)
@@ -68,10 +67,10 @@ class MimicTest(unittest.TestCase):
         start_leader = self.leader.latest()
         start_follower = self.follower.latest()
         self.drive(-1.5, 0.0)
-        self.leader.wait_pose(lambda p: p.x < start_leader.x - DISTANCE_M,
-                              "the leader reversing", DRIVE_DEADLINE_S)
-        moved = self.follower.wait_pose(lambda p: p.x > start_follower.x + DISTANCE_M,
-                                        "the follower moving forward", DRIVE_DEADLINE_S)
+        self.leader.wait_latest(lambda p: p.x < start_leader.x - DISTANCE_M,
+                                "the leader reversing", DRIVE_DEADLINE_S)
+        moved = self.follower.wait_latest(lambda p: p.x > start_follower.x + DISTANCE_M,
+                                          "the follower moving forward", DRIVE_DEADLINE_S)
         # The follower copies the speed magnitude (1.5) and no turn: straight along +x.
         self.assertAlmostEqual(moved.linear_velocity, 1.5, delta=1e-6)
         self.assertAlmostEqual(moved.y, start_follower.y, delta=POSE_TOL)
@@ -80,8 +79,8 @@ class MimicTest(unittest.TestCase):
     def test_follower_turns_like_the_leader(self):
         start = self.follower.latest()
         self.drive(0.0, -1.0)
-        turned = self.follower.wait_pose(lambda p: p.angular_velocity < -0.5,
-                                         "the follower turning clockwise", DRIVE_DEADLINE_S)
+        turned = self.follower.wait_latest(lambda p: p.angular_velocity < -0.5,
+                                           "the follower turning clockwise", DRIVE_DEADLINE_S)
         self.assertAlmostEqual(turned.angular_velocity, -1.0, delta=1e-6)
         self.assertAlmostEqual(turned.linear_velocity, 0.0, delta=1e-6)
         self.assertAlmostEqual(turned.x, start.x, delta=POSE_TOL)

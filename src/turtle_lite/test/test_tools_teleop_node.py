@@ -12,9 +12,10 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
-from test_tools_support import (
+from sim_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
+    Recorder,
     Tool,
     kill_node,
     publisher_has_connected,
@@ -78,24 +79,18 @@ class PtyTeleop:
 
 class TeleopTest(unittest.TestCase):
     def setUp(self):
-        self._lock = threading.Lock()
-        self.twists = []
-        self.sub = rospy.Subscriber("/turtle1/cmd_vel", Twist, self._on_twist)
-        self.addCleanup(self.sub.unregister)
+        self.twists = Recorder("/turtle1/cmd_vel", Twist)
+        self.addCleanup(self.twists.close)
         self.teleop = None
 
     def start_teleop(self, env_extra=None):
         self.teleop = PtyTeleop(env_extra)
         self.addCleanup(self.teleop.close)
 
-    def _on_twist(self, msg):
-        with self._lock:
-            self.twists.append((msg.linear.x, msg.linear.y, msg.linear.z,
-                                msg.angular.x, msg.angular.y, msg.angular.z))
-
     def received(self):
-        with self._lock:
-            return list(self.twists)
+        """Every Twist received, as (linear.x, .y, .z, angular.x, .y, .z)."""
+        return [(m.linear.x, m.linear.y, m.linear.z, m.angular.x, m.angular.y, m.angular.z)
+                for m in self.twists.messages()]
 
     def wait_ready(self, env_extra=None):
         self.start_teleop(env_extra)

@@ -1,9 +1,9 @@
-"""Unit tests for mimic's topic resolution and pose-to-command copy."""
+"""Unit tests for mimic's topic resolution and pose-to-command copy (mimic_relay)."""
 
 import math
 
 import pytest
-from turtle_lite.mimic import mimic_topics, pose_to_command
+from turtle_lite.mimic_relay import mimic_topics, pose_to_command
 
 
 @pytest.mark.parametrize(

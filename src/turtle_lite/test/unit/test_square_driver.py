@@ -1,11 +1,11 @@
-"""Unit tests for draw_square's state machine (SquareDriver)."""
+"""Unit tests for draw_square's state machine and goal maths (square_driver)."""
 
 import math
 import struct
 from dataclasses import dataclass, replace
 
 import pytest
-from turtle_lite.draw_square import PI, SquareDriver, State
+from turtle_lite.square_driver import PI, SquareDriver, State
 
 CENTRE = 5.5444446  # turtlesim's turtle1 start, float32
 DT = 0.016

@@ -1,13 +1,10 @@
-"""Unit tests for turtle_teleop_key: key mapping, configuration, terminal modes (no master)."""
+"""Unit tests for turtle_teleop_key's key mapping and configuration (teleop_keys)."""
 
 import math
-import os
-import termios
 
 import pytest
-from turtle_lite.teleop import (
+from turtle_lite.teleop_keys import (
     BANNER,
-    RawTerminal,
     TeleopConfig,
     is_quit_key,
     key_to_command,
@@ -94,27 +91,3 @@ def test_banner_is_verbatim():
         "---------------------------",
         "Use arrow keys to move the turtle. 'q' to quit.",
     )
-
-
-@pytest.fixture
-def pty_slave():
-    master, slave = os.openpty()
-    yield slave
-    os.close(master)
-    os.close(slave)
-
-
-def test_raw_terminal_sets_and_restores_modes(pty_slave):
-    before = termios.tcgetattr(pty_slave)
-    with RawTerminal(pty_slave):
-        raw = termios.tcgetattr(pty_slave)
-        assert not raw[3] & (termios.ICANON | termios.ECHO)
-        assert (raw[6][termios.VMIN], raw[6][termios.VTIME]) == (1, 0)
-    assert termios.tcgetattr(pty_slave) == before
-
-
-def test_raw_terminal_restores_on_error(pty_slave):
-    before = termios.tcgetattr(pty_slave)
-    with pytest.raises(KeyboardInterrupt), RawTerminal(pty_slave):
-        raise KeyboardInterrupt
-    assert termios.tcgetattr(pty_slave) == before
