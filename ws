@@ -31,6 +31,15 @@ usage: ./ws COMMAND [ARGS]
 EOF
 }
 
+# demo, test and bench run every node on this machine: name it "localhost" in ROS URIs unless
+# the user chose a name or address, so a hostname that does not resolve (a bare container, a
+# renamed machine) cannot stop a node from reaching its own master.
+local_ros_network() {
+  if [[ -z ${ROS_HOSTNAME:-} && -z ${ROS_IP:-} ]]; then
+    export ROS_HOSTNAME=localhost
+  fi
+}
+
 source_devel() {
   [[ -f $DEVEL_DIR/setup.bash ]] || { echo "ws: $DEVEL_DIR/ is missing: run ./ws build" >&2; exit 1; }
   # setup.bash reads unset variables; relax nounset while it runs.
@@ -95,6 +104,7 @@ cmd_unit() {
 
 cmd_integration() {
   source_devel
+  local_ros_network
   local files=("$@")
   ((${#files[@]})) || files=(src/*/test/*.test)
   local failed=0 f dir
@@ -140,11 +150,13 @@ cmd_demo() {
   cmd_deps
   build_step
   source_devel
+  local_ros_network
   rosrun convoy convoy_demo --out "$ROOT/$BUILD_DIR/demo" "$@"
 }
 
 cmd_bench() {
   source_devel
+  local_ros_network
   local names=("$@") n
   ((${#names[@]})) || mapfile -t names < <(cd bench && ls ./*.py | sed 's|^\./||; s|\.py$||')
   for n in "${names[@]}"; do
