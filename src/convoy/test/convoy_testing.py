@@ -1,14 +1,13 @@
 """Shared helpers of the convoy integration tests: condition waits and a pose watcher."""
 import math
 import threading
-import time
 
 import rospy
 from geometry_msgs.msg import Twist
+from turtle_lite.testing import wait_for
 
 from turtle_lite.msg import Pose
 
-POLL_S = 0.05
 TOLERANCE_M = 1.5  # the course's distance_tolerance (convoy_node's default)
 # A follower has caught up when it is within the tolerance plus half a metre of its leader.
 CAUGHT_UP_M = TOLERANCE_M + 0.5
@@ -16,17 +15,6 @@ CAUGHT_UP_M = TOLERANCE_M + 0.5
 # straight; curves open it a little. Above this the convoy is broken, not just slow.
 STATED_GAP_M = 2.5
 LEFT_START_M = 1.0  # a follower that moved this far from its spawn point has left the corner
-
-
-def wait_for(predicate, timeout_s, what):
-    """Polls predicate() until true; raises AssertionError naming `what` after timeout_s."""
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError('timed out after %.0f s waiting for %s' % (timeout_s, what))
-        if rospy.is_shutdown():
-            raise AssertionError('ROS shut down while waiting for %s' % what)
-        time.sleep(POLL_S)
 
 
 def distance(a, b):

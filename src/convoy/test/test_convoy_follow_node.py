@@ -6,7 +6,8 @@ import unittest
 import rosnode
 import rospy
 import rostest
-from convoy_testing import CAUGHT_UP_M, STATED_GAP_M, ConvoyWatch, wait_for
+from convoy_testing import CAUGHT_UP_M, STATED_GAP_M, ConvoyWatch
+from turtle_lite.testing import wait_for
 
 PKG = 'convoy'
 STARTUP_TIMEOUT_S = 40.0

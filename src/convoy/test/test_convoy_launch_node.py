@@ -10,8 +10,9 @@ import rosgraph
 import rosnode
 import rospy
 import rostest
-from convoy_testing import TOLERANCE_M, ConvoyWatch, distance, wait_for
+from convoy_testing import TOLERANCE_M, ConvoyWatch, distance
 from geometry_msgs.msg import Twist
+from turtle_lite.testing import wait_for
 
 from turtle_lite.msg import Pose
 from turtle_lite.srv import TeleportAbsolute

@@ -16,17 +16,6 @@ from turtle_lite.msg import Pose
 WORLD_SIZE_M = (500 - 1) / 45.0
 
 
-def wait_for(predicate, timeout_s, what):
-    """Poll predicate every 20 ms until true; fail naming what was awaited at the deadline."""
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError('timed out after %.0f s waiting for %s' % (timeout_s, what))
-        if rospy.is_shutdown():
-            raise AssertionError('shut down while waiting for %s' % what)
-        time.sleep(0.02)
-
-
 class TeamWatch:
     """Records what a user would see of robots 0..n-1: poses, commands, statuses, logs."""
 

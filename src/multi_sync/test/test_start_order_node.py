@@ -5,7 +5,8 @@ import unittest
 
 import rospy
 import rostest
-from team_watch import NodeProcess, TeamWatch, wait_for
+from team_watch import NodeProcess, TeamWatch
+from turtle_lite.testing import wait_for
 
 from multi_sync.msg import RobotStatus
 

@@ -8,7 +8,6 @@ something is wrong.
 import os
 import subprocess
 import threading
-import time
 import unittest
 import xmlrpc.client
 
@@ -17,6 +16,7 @@ import rosnode
 import rospy
 from rosgraph_msgs.msg import Log
 from std_srvs.srv import Empty
+from turtle_lite.testing import wait_for
 
 from turtle_lite.msg import Color, Pose
 from turtle_lite.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
@@ -25,7 +25,6 @@ START_DEADLINE_S = 30.0  # a simulator or tool process coming up (Python start-u
 EVENT_DEADLINE_S = 15.0  # something that should follow promptly (a pose, a log line, an exit)
 # Under one 16 ms simulator tick, so a wait on the newest pose sees nearly every pose, and
 # slow enough that predicates asking the master stay at 100 calls/s at the most.
-POLL_S = 0.01
 
 #: float32 pose fields compared to this tolerance.
 POSE_TOL = 1e-5
@@ -38,21 +37,6 @@ WORLD = 11.088889
 TURTLE_TOPICS = ("cmd_vel", "pose", "color_sensor")
 TURTLE_SERVICES = ("set_pen", "teleport_relative", "teleport_absolute")
 TURTLE_RESOURCES = TURTLE_TOPICS + TURTLE_SERVICES
-
-
-def wait_for(predicate, timeout_s, what):
-    """Poll predicate until it returns a true value; return that value.
-
-    Raises AssertionError naming `what` when timeout_s passes first.
-    """
-    deadline = time.monotonic() + timeout_s
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out after {timeout_s:.1f} s waiting for {what}")
-        time.sleep(POLL_S)
 
 
 class Recorder:
