@@ -51,7 +51,8 @@ class MonitorNode:
             header.frame_id = "monitor", robot_id = -1, is_ready = true. It is sent once
             every ready robot has subscribed (at most CONNECT_WAIT_S after the last ready).
             Latched, so a robot that subscribes after GO receives it on connecting; a ready
-            report received after GO is answered with a fresh GO.
+            report after GO from a node GO did not reach (a robot started late) is answered
+            with a fresh GO.
     Services: none.
     Parameters: none (the team size is argv[1], as in the lesson).
     """
@@ -75,6 +76,8 @@ class MonitorNode:
         go.robot_id = -1
         go.is_ready = True
         self._pub.publish(go)
+        # Read after publishing: a node that connected meanwhile got the latched GO instead.
+        self._book.go_sent(_listeners(self._pub))
 
     def _try_go(self, force=False):
         """Publish the pending GO if every ready robot listens (or force); log it."""
@@ -117,6 +120,9 @@ class MonitorNode:
             rospy.logwarn_throttle(
                 5.0, 'Ignoring status with robot_id %d: expected an id between 0 and 19'
                 % msg.robot_id)
+        elif outcome is Outcome.GO_ON_ITS_WAY:
+            rospy.logdebug('Robot %d reported ready while GO was on its way to it: not repeated',
+                           msg.robot_id)
         elif outcome is Outcome.NOT_READY:
             rospy.logdebug('Robot %d reported not ready: ignored', msg.robot_id)
 

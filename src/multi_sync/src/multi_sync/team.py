@@ -63,7 +63,8 @@ class Outcome(Enum):
     NEW_READY = 'new ready'        # a robot reported ready for the first time; not all yet
     TEAM_READY = 'team ready'      # this report completed the team: log GO and publish it
     DUPLICATE = 'duplicate'        # already counted, before GO: nothing to do
-    ANSWER_GO = 'answer go'        # a report after GO: that robot missed GO, send it again
+    ANSWER_GO = 'answer go'        # a report after GO from a node GO did not reach: send again
+    GO_ON_ITS_WAY = 'go on its way'  # a report after GO from a node GO reached: nothing to do
     NOT_READY = 'not ready'        # is_ready false: ignored
     BAD_ID = 'bad id'              # id outside 0..MAX_ROBOTS-1: warn and ignore
     MONITOR = 'monitor'            # a monitor's own message (its GO): ignore
@@ -73,14 +74,17 @@ class Outcome(Enum):
 class TeamBook:
     """The monitor's record of which robots are ready, and whether GO was given.
 
-    GO is given once, when team_size distinct valid ids have reported ready. Any ready
-    report after that is answered with GO again (the robot evidently did not get it).
+    GO is given once, when team_size distinct valid ids have reported ready. A ready report
+    after GO is answered with GO again only when its sender was not among the subscribers
+    GO was sent to: a robot that was subscribed receives that GO over TCP, even if it
+    re-announced before reading it (so the team hears one GO).
     """
 
     team_size: int
     ready_ids: set = field(default_factory=set)
     go_given: bool = False
     senders: dict = field(default_factory=dict)
+    go_reached: frozenset = frozenset()  # the nodes subscribed when GO was published
 
     def __post_init__(self):
         if isinstance(self.team_size, bool) or not isinstance(self.team_size, int) \
@@ -93,10 +97,14 @@ class TeamBook:
         """How many distinct robots have reported ready."""
         return len(self.ready_ids)
 
+    def go_sent(self, reached):
+        """Record that GO was published to the nodes named in reached (caller ids)."""
+        self.go_reached = frozenset(reached)
+
     def report(self, robot_id, is_ready, frame_id='', sender=''):
         """Record one RobotStatus (robot_id, is_ready, header.frame_id); return an Outcome.
 
-        sender names the node that sent it ('' if unknown); see unconnected().
+        sender names the node that sent it ('' if unknown); see unconnected() and go_sent().
         """
         if frame_id == MONITOR_FRAME_ID:
             return Outcome.MONITOR
@@ -107,6 +115,8 @@ class TeamBook:
         self.senders[robot_id] = sender
         if self.go_given:
             self.ready_ids.add(robot_id)
+            if sender and sender in self.go_reached:
+                return Outcome.GO_ON_ITS_WAY
             return Outcome.ANSWER_GO
         if robot_id in self.ready_ids:
             return Outcome.DUPLICATE

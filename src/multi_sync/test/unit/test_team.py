@@ -96,6 +96,22 @@ def test_teambook_go_only_once_and_counts_distinct():
     assert book.ready_count == 3
 
 
+@pytest.mark.parametrize('sender, reached, outcome', [
+    ('/move_robot_0', {'/move_robot_0', '/move_robot_1'}, Outcome.GO_ON_ITS_WAY),  # re-announced
+    #   before reading the GO already written to its connection: it will read it
+    ('/move_robot_0', {'/move_robot_1'}, Outcome.ANSWER_GO),  # was not subscribed at GO
+    ('/move_robot_0', set(), Outcome.ANSWER_GO),    # GO decided, not yet published
+    ('', {'/move_robot_0'}, Outcome.ANSWER_GO),     # sender unknown: answer, to be safe
+])
+def test_teambook_answers_only_nodes_go_did_not_reach(sender, reached, outcome):
+    book = TeamBook(1)
+    assert book.report(0, True, '', sender) is Outcome.TEAM_READY
+    if reached:
+        book.go_sent(reached)
+    assert book.report(0, True, '', sender) is outcome
+    assert book.ready_count == 1
+
+
 def test_teambook_of_one_goes_on_first_ready():
     assert TeamBook(1).report(19, True) is Outcome.TEAM_READY
 
