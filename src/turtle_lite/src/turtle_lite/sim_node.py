@@ -409,8 +409,10 @@ class TurtleSimNode:
                                    'Ignoring cmd_vel for [%s]: %s is not a finite number '
                                    'within +-%g' % (name, bad, MAX_ABS_VELOCITY))
             return
-        # Applied at the next tick, like roscpp's queue of 1 drained by spinOnce.
-        self._pending_cmds[name] = (vx, vy, w)
+        # Applied at the next tick, like roscpp's queue of 1 drained by spinOnce. Under the
+        # lock: the tick swaps the dict out, and a write into the old one would be lost.
+        with self._lock:
+            self._pending_cmds[name] = (vx, vy, w)
 
     def handle_save_image(self, req):
         path = req.path or self.params.image_path
