@@ -92,12 +92,20 @@ cmd_lint() {
   echo "lint: clean"
 }
 
+# Every catkin package under src/, at any depth (src/turtle_lite/turtlesim, src/basics/chat_pkg).
+package_dirs() { find src -name package.xml -not -path '*/.*' -printf '%h\n' | sort; }
+
+# Every package's rostest files, and its unit-test folders.
+integration_files() { local d; for d in $(package_dirs); do compgen -G "$d/test/*.test" || true; done; }
+unit_dirs() { local d; for d in $(package_dirs); do [[ ! -d $d/test/unit ]] || echo "$d/test/unit"; done; }
+
 cmd_unit() {
   source_devel
   mkdir -p "$RESULTS_DIR"
-  local status=0
+  local status=0 dirs
+  mapfile -t dirs < <(unit_dirs)
   /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS_DIR/unit.xml" \
-    src/*/test/unit "$@" || status=$?
+    "${dirs[@]}" "$@" || status=$?
   # 5 = no tests collected: the summary reports that as a failure, not pytest's exit code.
   ((status == 0 || status == 5))
 }
@@ -106,7 +114,7 @@ cmd_integration() {
   source_devel
   local_ros_network
   local files=("$@")
-  ((${#files[@]})) || files=(src/*/test/*.test)
+  ((${#files[@]})) || mapfile -t files < <(integration_files)
   local failed=0 f dir
   for f in "${files[@]}"; do
     dir=$(integration_results_dir "$f")
@@ -120,7 +128,7 @@ cmd_integration() {
   return $failed
 }
 
-# src/<pkg>/test/<name>.test -> <pkg>
+# src/.../<pkg>/test/<name>.test -> <pkg>
 package_of() { basename "$(dirname "$(dirname "$1")")"; }
 
 # Each .test file reports into a directory of its own, so test names never collide.
@@ -139,7 +147,7 @@ cmd_test() {
   cmd_unit || true
   cmd_integration || true
   local expected=(--junit "$RESULTS_DIR/unit.xml") f
-  for f in src/*/test/*.test; do
+  for f in $(integration_files); do
     expected+=(--rostest "$(integration_results_dir "$f")")
   done
   ((lint_ok)) || expected+=(--failed-step lint)

@@ -41,8 +41,7 @@ class LatencyProbe:
     def __init__(self):
         import rospy
         from geometry_msgs.msg import Twist
-
-        from turtle_lite.msg import Pose
+        from turtlesim.msg import Pose
 
         self._rospy, self._pose_type = rospy, Pose
         self._lock = threading.Lock()

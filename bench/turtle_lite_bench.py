@@ -32,9 +32,8 @@ import rosgraph
 import rosnode
 import rospy
 from geometry_msgs.msg import Twist
-
-from turtle_lite.msg import Pose
-from turtle_lite.srv import Kill, Spawn, TeleportAbsolute
+from turtlesim.msg import Pose
+from turtlesim.srv import Kill, Spawn, TeleportAbsolute
 
 # CPU / rate measurement windows. CPU time comes in 10 ms clock ticks, so an idle figure
 # near 1 % needs the longer window to resolve 0.1 %; the whole run stays near 2 minutes.

@@ -5,8 +5,7 @@ import threading
 import rospy
 from geometry_msgs.msg import Twist
 from turtle_lite.testing import wait_for
-
-from turtle_lite.msg import Pose
+from turtlesim.msg import Pose
 
 TOLERANCE_M = 1.5  # the course's distance_tolerance (convoy_node's default)
 # A follower has caught up when it is within the tolerance plus half a metre of its leader.

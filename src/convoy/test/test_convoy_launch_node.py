@@ -13,9 +13,8 @@ import rostest
 from convoy_testing import TOLERANCE_M, ConvoyWatch, distance
 from geometry_msgs.msg import Twist
 from turtle_lite.testing import wait_for
-
-from turtle_lite.msg import Pose
-from turtle_lite.srv import TeleportAbsolute
+from turtlesim.msg import Pose
+from turtlesim.srv import TeleportAbsolute
 
 PKG = 'convoy'
 STARTUP_TIMEOUT_S = 30.0

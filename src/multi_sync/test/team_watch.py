@@ -8,9 +8,9 @@ import time
 import rospy
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
+from turtlesim.msg import Pose
 
 from multi_sync.msg import RobotPosition, RobotStatus
-from turtle_lite.msg import Pose
 
 # turtlesim's world (metres), for "stopped before the wall" checks.
 WORLD_SIZE_M = (500 - 1) / 45.0

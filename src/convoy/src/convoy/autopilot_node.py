@@ -4,6 +4,7 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from turtlesim.msg import Pose
 
 from convoy.control import is_finite_pose
 from convoy.path import (
@@ -17,7 +18,6 @@ from convoy.path import (
     PurePursuit,
 )
 from convoy.ros_io import CommandPublisher, ConfigError, number_param, pose_from_msg
-from turtle_lite.msg import Pose
 
 WARN_PERIOD_S = 5.0  # throttle for repeated bad-input warnings
 # The path must keep this far from the walls: the followers cut inside the leader's curves,
@@ -60,7 +60,7 @@ class AutopilotNode:
     """Drives one turtle along a figure eight (pure pursuit), a command on every pose.
 
     Subscribes:
-        pose (turtle_lite/Pose, queue 1): the turtle's pose; remap to e.g. /robot1/pose.
+        pose (turtlesim/Pose, queue 1): the turtle's pose; remap to e.g. /robot1/pose.
     Publishes:
         cmd_vel (geometry_msgs/Twist, queue 1): the turtle's command; remap to /robot1/cmd_vel.
             A zero Twist at shutdown.

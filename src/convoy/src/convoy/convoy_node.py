@@ -4,6 +4,7 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from turtlesim.msg import Pose
 
 from convoy.control import (
     DEFAULT_KP_AV,
@@ -14,7 +15,6 @@ from convoy.control import (
     is_finite_pose,
 )
 from convoy.ros_io import CommandPublisher, ConfigError, number_param, pose_from_msg
-from turtle_lite.msg import Pose
 
 QUEUE_SIZE = 10  # the course's queue for both subscriptions and the command publisher
 WARN_PERIOD_S = 5.0  # throttle for repeated bad-input warnings
@@ -62,8 +62,8 @@ class ConvoyNode:
     leader pose). Poses with NaN or infinite fields are ignored with a throttled warning.
 
     Subscribes:
-        ~leader_pose (turtle_lite/Pose, queue 10): the leader's pose.
-        ~follower_pose (turtle_lite/Pose, queue 10): the follower's pose; triggers a command.
+        ~leader_pose (turtlesim/Pose, queue 10): the leader's pose.
+        ~follower_pose (turtlesim/Pose, queue 10): the follower's pose; triggers a command.
     Publishes:
         ~follower_speeds (geometry_msgs/Twist, queue 10): the follower's command; a zero Twist
             inside the tolerance and once at shutdown.

@@ -11,11 +11,11 @@ import sys
 import time
 
 import rospy
+from turtle_lite.srv import SaveImage
 
 from convoy.control import DEFAULT_TOLERANCE_M
 from convoy.harness import ConvoyRecorder, HarnessError, LaunchedConvoy, launch_for, wait_until
 from convoy.metrics import follower_stats, gap_series
-from turtle_lite.srv import SaveImage
 
 DEFAULT_DURATION_S = 30.0  # with start-up and shutdown, one demo stays well under a minute
 MAX_DURATION_S = 600.0

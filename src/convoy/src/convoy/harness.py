@@ -12,8 +12,7 @@ import time
 import rosgraph
 import rospy
 from geometry_msgs.msg import Twist
-
-from turtle_lite.msg import Pose
+from turtlesim.msg import Pose
 
 POLL_S = 0.05  # condition polling period
 STOP_TIMEOUT_S = 20.0  # roslaunch needs a few seconds to stop its nodes and master
@@ -129,7 +128,7 @@ class ConvoyRecorder:
     """Records the poses (and optionally the commands) of robot1..robot<n>.
 
     Subscribes:
-        /robot<i>/pose (turtle_lite/Pose) for i = 1..n.
+        /robot<i>/pose (turtlesim/Pose) for i = 1..n.
         /robot<i>/cmd_vel (geometry_msgs/Twist) for i = 2..n, if record_commands.
     Publishes, services, parameters: none.
     Samples are (t_s, x_m, y_m) with t from time.monotonic(); command receipt times pair with

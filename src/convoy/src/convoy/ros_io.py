@@ -24,7 +24,7 @@ def number_param(name, default, minimum, allow_minimum=True):
 
 
 def pose_from_msg(msg):
-    """A turtle_lite/Pose message as a model Pose2D (not checked for finiteness)."""
+    """A turtlesim/Pose message as a model Pose2D (not checked for finiteness)."""
     return Pose2D(float(msg.x), float(msg.y), float(msg.theta))
 
 

@@ -6,12 +6,12 @@ from dataclasses import dataclass
 
 import rospy
 from geometry_msgs.msg import Twist
+from turtlesim.msg import Pose
 
 from multi_sync.motion import WORLD_SIZE_M, DriveLimits, TeamPositions, decide
 from multi_sync.msg import RobotPosition, RobotStatus
 from multi_sync.node_util import parse_argv_or_exit, synchronous_publisher
 from multi_sync.team import MONITOR_FRAME_ID, parse_robot_id
-from turtle_lite.msg import Pose
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
 SHARED_QUEUE = 100
@@ -84,7 +84,7 @@ class MoveRobotNode:
     drive loop and sends the first command from the callback itself.
 
     Subscribes:
-        robot_<id>/pose (turtle_lite/Pose): the robot's pose, for the bumper.
+        robot_<id>/pose (turtlesim/Pose): the robot's pose, for the bumper.
         team_status (multi_sync/RobotStatus): GO from the monitor; teammates' reports ignored.
         team_positions (multi_sync/RobotPosition): teammates' positions (own ignored).
     Publishes:

@@ -3,10 +3,10 @@ import sys
 from dataclasses import dataclass
 
 import rospy
+from turtlesim.srv import Spawn
 
 from multi_sync.motion import team_layout
 from multi_sync.team import MAX_ROBOTS
-from turtle_lite.srv import Spawn
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,7 @@ class SpawnTeam:
 
     Subscribes: none.  Publishes: none.
     Services called:
-        spawn (turtle_lite/Spawn): one call per robot, name robot_<id>, pose from
+        spawn (turtlesim/Spawn): one call per robot, name robot_<id>, pose from
             multi_sync.motion.team_layout (heading +x).
     Parameters (private):
         ~team_size (int, 4): robots in the team; robots first_id..team_size-1 are spawned.

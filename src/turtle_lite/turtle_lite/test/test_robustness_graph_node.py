@@ -20,9 +20,8 @@ from sim_support import (
     services,
     wait_for,
 )
-
-from turtle_lite.msg import Color
-from turtle_lite.srv import Kill, Spawn
+from turtlesim.msg import Color
+from turtlesim.srv import Kill, Spawn
 
 NODE_SERVICES = ("clear", "reset", "spawn", "kill")
 

@@ -17,9 +17,8 @@ import rospy
 from rosgraph_msgs.msg import Log
 from std_srvs.srv import Empty
 from turtle_lite.testing import wait_for
-
-from turtle_lite.msg import Color, Pose
-from turtle_lite.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
+from turtlesim.msg import Color, Pose
+from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
 START_DEADLINE_S = 30.0  # a simulator or tool process coming up (Python start-up under load)
 EVENT_DEADLINE_S = 15.0  # something that should follow promptly (a pose, a log line, an exit)

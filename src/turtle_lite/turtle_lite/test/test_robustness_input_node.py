@@ -21,8 +21,7 @@ from sim_support import (
     wait_connected,
     wait_for,
 )
-
-from turtle_lite.srv import Kill, Spawn, TeleportAbsolute, TeleportRelative
+from turtlesim.srv import Kill, Spawn, TeleportAbsolute, TeleportRelative
 
 POSE_TOL = 1e-4
 BAD_NUMBERS = (math.nan, math.inf, -math.inf)

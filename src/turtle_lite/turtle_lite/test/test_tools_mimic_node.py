@@ -8,8 +8,7 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 from sim_support import CENTER, START_DEADLINE_S, PoseRecorder, wait_for
-
-from turtle_lite.srv import TeleportAbsolute
+from turtlesim.srv import TeleportAbsolute
 
 DISTANCE_M = 0.5  # how far both turtles must have gone to count as moving
 POSE_TOL = 1e-4

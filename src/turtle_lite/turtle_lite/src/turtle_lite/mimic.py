@@ -6,16 +6,16 @@ pose-to-command copy are the pure functions of mimic_relay.
 
 import rospy
 from geometry_msgs.msg import Twist
+from turtlesim.msg import Pose
 
 from turtle_lite.mimic_relay import mimic_topics, pose_to_command
-from turtle_lite.msg import Pose
 
 
 class MimicNode:
     """Republishes the leader's pose velocities as the follower's cmd_vel.
 
     Subscribes:
-        input/pose (turtle_lite/Pose, queue 1): the leader's pose.
+        input/pose (turtlesim/Pose, queue 1): the leader's pose.
     Publishes:
         output/cmd_vel (geometry_msgs/Twist, queue 1): linear.x = pose.linear_velocity,
             angular.z = pose.angular_velocity, one per pose; one zero Twist on shutdown.

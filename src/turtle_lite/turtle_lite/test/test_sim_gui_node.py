@@ -13,8 +13,7 @@ import rospy
 import rostest
 from PIL import ImageGrab
 from sim_support import DEFAULT_BG, START_DEADLINE_S, wait_for
-
-from turtle_lite.srv import TeleportAbsolute
+from turtlesim.srv import TeleportAbsolute
 
 SCREEN = '800x600x24'
 

@@ -16,8 +16,7 @@ from sim_support import (
     subscribed_topics,
     wait_for,
 )
-
-from turtle_lite.srv import Spawn, TeleportAbsolute
+from turtlesim.srv import Spawn, TeleportAbsolute
 
 POSE_TOL = 1e-4  # float32 poses, printed goals with 6 decimals
 # The side takes about 2 s of pose ticks, the turn about 4 s; allow for a loaded machine.

@@ -9,8 +9,8 @@ import threading
 import rospy
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
+from turtlesim.msg import Pose
 
-from turtle_lite.msg import Pose
 from turtle_lite.square_driver import SquareDriver
 
 TICK_S = 0.016  # timer period, the simulator's tick
@@ -20,7 +20,7 @@ class DrawSquareNode:
     """Drives turtle1 round a square, as turtlesim's draw_square demo does.
 
     Subscribes:
-        turtle1/pose (turtle_lite/Pose, queue 1): the latest pose drives the state machine.
+        turtle1/pose (turtlesim/Pose, queue 1): the latest pose drives the state machine.
     Publishes:
         turtle1/cmd_vel (geometry_msgs/Twist, queue 1): 1 m/s forward, 0.4 rad/s turns,
             zero Twists while coming to rest; one zero Twist on shutdown.

@@ -16,8 +16,7 @@ from sim_support import (
     wait_connected,
     wait_for,
 )
-
-from turtle_lite.srv import TeleportAbsolute
+from turtlesim.srv import TeleportAbsolute
 
 
 class SimRemapTest(SimTestCase):

@@ -3,14 +3,14 @@
 Node ``turtlesim`` (default name).
 
 Node services (node namespace, like turtlesim):
-  clear (std_srvs/Empty), reset (std_srvs/Empty), spawn (turtle_lite/Spawn),
-  kill (turtle_lite/Kill)
+  clear (std_srvs/Empty), reset (std_srvs/Empty), spawn (turtlesim/Spawn),
+  kill (turtlesim/Kill)
 Private services (turtle_lite extension):
   ~save_image (turtle_lite/SaveImage): write the canvas with the turtles as a PNG
 Per turtle, in the turtle's namespace (``turtle1/...``; namespace remaps such as
 ``/turtle1:=/robot1`` move all six, as in roscpp):
   Subscribes  cmd_vel (geometry_msgs/Twist, queue 1)
-  Publishes   pose (turtle_lite/Pose), color_sensor (turtle_lite/Color), every tick (62.5 Hz)
+  Publishes   pose (turtlesim/Pose), color_sensor (turtlesim/Color), every tick (62.5 Hz)
   Services    set_pen, teleport_relative, teleport_absolute
 Parameters:
   ~background_r, ~background_g, ~background_b (int, default 69, 86, 255): written at start if
@@ -32,14 +32,10 @@ from dataclasses import dataclass
 import rospy
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty, EmptyResponse
-
-from turtle_lite.frames import send_frame
-from turtle_lite.msg import Color, Pose
-from turtle_lite.srv import (
+from turtlesim.msg import Color, Pose
+from turtlesim.srv import (
     Kill,
     KillResponse,
-    SaveImage,
-    SaveImageResponse,
     SetPen,
     SetPenResponse,
     Spawn,
@@ -50,11 +46,14 @@ from turtle_lite.srv import (
     TeleportRelativeResponse,
 )
 
+from turtle_lite.frames import send_frame
+from turtle_lite.srv import SaveImage, SaveImageResponse
+
 from . import namespaces
 from .naming import NameCounter, graph_name_error
 from .world import CENTER, DEFAULT_BACKGROUND, DT_S, MAX_ABS_VELOCITY, World
 
-#: TCPROS frames of turtle_lite/Pose (5 float32) and turtle_lite/Color (3 uint8): a
+#: TCPROS frames of turtlesim/Pose (5 float32) and turtlesim/Color (3 uint8): a
 #: little-endian uint32 length, then the fields in order (the md5sums fix this layout).
 _POSE_FRAME = struct.Struct('<I5f')
 _POSE_BYTES = 20

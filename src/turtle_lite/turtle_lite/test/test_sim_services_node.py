@@ -25,8 +25,8 @@ from sim_support import (
     wait_connected,
     wait_for,
 )
-
-from turtle_lite.srv import Kill, SaveImage, SetPen, Spawn, TeleportAbsolute
+from turtle_lite.srv import SaveImage
+from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute
 
 
 class SimServicesTest(SimTestCase):
