@@ -113,6 +113,8 @@ cmd_unit() {
 cmd_integration() {
   source_devel
   local_ros_network
+  # install_space.test installs from this build directory.
+  export WS_BUILD_PATH="$ROOT/$BUILD_DIR"
   local files=("$@")
   ((${#files[@]})) || mapfile -t files < <(integration_files)
   local failed=0 f dir

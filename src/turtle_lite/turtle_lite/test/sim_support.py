@@ -6,7 +6,9 @@ something is wrong.
 """
 
 import os
+import select
 import subprocess
+import termios
 import threading
 import unittest
 import xmlrpc.client
@@ -231,6 +233,58 @@ class Tool:
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
+
+
+class PtyTeleop:
+    """turtle_teleop_key (or argv) with a pseudo-terminal as stdin/stdout/stderr."""
+
+    def __init__(self, env_extra=None, argv=("rosrun", "turtle_lite", "turtle_teleop_key")):
+        self.master, self.slave = os.openpty()
+        self._out = b""
+        self._lock = threading.Lock()
+        self.proc = subprocess.Popen(list(argv),
+                                     stdin=self.slave, stdout=self.slave, stderr=self.slave,
+                                     start_new_session=True,
+                                     env=dict(os.environ, **(env_extra or {})))
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self):
+        fd = self.master
+        while True:
+            try:
+                ready, _, _ = select.select([fd], [], [], 0.1)
+                data = os.read(fd, 1024) if ready else b""
+            except (OSError, ValueError):  # the test hung up, or the teleop side closed
+                return
+            if ready:
+                with self._lock:
+                    self._out += data
+            elif self.proc.poll() is not None:
+                return
+
+    def output(self):
+        with self._lock:
+            return self._out.decode(errors="replace")
+
+    def send(self, data):
+        os.write(self.master, data)
+
+    def lflags(self):
+        return termios.tcgetattr(self.slave)[3]
+
+    def hang_up(self):
+        """Close the terminal's master side, as when a terminal window is closed."""
+        os.close(self.master)
+        self.master = None
+
+    def close(self):
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+        if self.master is not None:
+            os.close(self.master)
+        os.close(self.slave)
 
 
 def wait_connected(pub, what):

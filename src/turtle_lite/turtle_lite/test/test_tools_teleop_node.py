@@ -1,12 +1,9 @@
 #!/usr/bin/env python3
 """turtle_teleop_key driven through a pseudo-terminal: keys in, Twists out, terminal restored."""
 
-import os
-import select
 import signal
 import subprocess
 import termios
-import threading
 import unittest
 
 import rospy
@@ -15,6 +12,7 @@ from geometry_msgs.msg import Twist
 from sim_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
+    PtyTeleop,
     Recorder,
     Tool,
     kill_node,
@@ -23,58 +21,6 @@ from sim_support import (
 )
 
 BANNER_LAST = "Use arrow keys to move the turtle. 'q' to quit."
-
-
-class PtyTeleop:
-    """turtle_teleop_key with a pseudo-terminal as stdin/stdout/stderr."""
-
-    def __init__(self, env_extra=None):
-        self.master, self.slave = os.openpty()
-        self._out = b""
-        self._lock = threading.Lock()
-        self.proc = subprocess.Popen(["rosrun", "turtle_lite", "turtle_teleop_key"],
-                                     stdin=self.slave, stdout=self.slave, stderr=self.slave,
-                                     start_new_session=True,
-                                     env=dict(os.environ, **(env_extra or {})))
-        self._reader = threading.Thread(target=self._read, daemon=True)
-        self._reader.start()
-
-    def _read(self):
-        fd = self.master
-        while True:
-            try:
-                ready, _, _ = select.select([fd], [], [], 0.1)
-                data = os.read(fd, 1024) if ready else b""
-            except (OSError, ValueError):  # the test hung up, or the teleop side closed
-                return
-            if ready:
-                with self._lock:
-                    self._out += data
-            elif self.proc.poll() is not None:
-                return
-
-    def output(self):
-        with self._lock:
-            return self._out.decode(errors="replace")
-
-    def send(self, data):
-        os.write(self.master, data)
-
-    def lflags(self):
-        return termios.tcgetattr(self.slave)[3]
-
-    def hang_up(self):
-        """Close the terminal's master side, as when a terminal window is closed."""
-        os.close(self.master)
-        self.master = None
-
-    def close(self):
-        if self.proc.poll() is None:
-            self.proc.kill()
-            self.proc.wait()
-        if self.master is not None:
-            os.close(self.master)
-        os.close(self.slave)
 
 
 class TeleopTest(unittest.TestCase):
