@@ -2,27 +2,28 @@
 
 rosrun convoy convoy_demo --out DIR [--duration S] [--n N] [--gui]
 Starts the convoy launch file (convoy.launch for 3 robots, convoy_chain.launch otherwise) with
-its own master on a free port, records every robot for a fixed time, saves the simulator's
-canvas and a plot of each follower's gap to its leader, prints a summary and stops everything.
+its own master on a free port, records every pose and cmd_vel with `rosbag record` for a fixed
+time, saves the simulator's canvas, stops everything, then makes the summary table and the
+trail and gap plots from the bag with bag_report's code.
 """
 import argparse
 import os
 import sys
 import time
 
+import rosgraph
 import rospy
 from turtle_lite.srv import SaveImage
 
-from convoy.control import DEFAULT_TOLERANCE_M
-from convoy.harness import ConvoyRecorder, HarnessError, LaunchedConvoy, launch_for, wait_until
-from convoy.metrics import follower_stats, gap_series
+from convoy.bag_report import BagError, summarise_bag, write_figures
+from convoy.harness import HarnessError, LaunchedConvoy, launch_for, wait_until
+from convoy.recording import BagRecorder, convoy_topics
+from convoy.report import table_lines
 
 DEFAULT_DURATION_S = 30.0  # with start-up and shutdown, one demo stays well under a minute
 MAX_DURATION_S = 600.0
 STARTUP_TIMEOUT_S = 30.0  # a loaded 2-core machine can take ~10 s to bring up 13 processes
 SERVICE_TIMEOUT_S = 10.0
-# "Caught up": within the course's tolerance plus half a metre of the leader.
-CATCH_UP_MARGIN_M = 0.5
 
 
 def parse_args(argv):
@@ -47,30 +48,6 @@ def parse_args(argv):
     return args
 
 
-def plot_gaps(path, series, tolerance_m, threshold_m):
-    """Writes a PNG of each follower's gap to its leader over time."""
-    import matplotlib
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt  # after choosing the headless backend
-
-    fig, ax = plt.subplots(figsize=(8, 4.5), dpi=100)
-    for robot, points in sorted(series.items()):
-        ax.plot([t for t, _ in points], [g for _, g in points],
-                label='robot%d to robot%d' % (robot, robot - 1), linewidth=1.2)
-    ax.axhline(tolerance_m, color='grey', linestyle='--', linewidth=1,
-               label='tolerance %.1f m' % tolerance_m)
-    ax.axhline(threshold_m, color='grey', linestyle=':', linewidth=1,
-               label='caught up %.1f m' % threshold_m)
-    ax.set_xlabel('time since every robot was up (s)')
-    ax.set_ylabel('distance to its leader (m)')
-    ax.set_title('Convoy: each follower chasing its leader')
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc='upper right', fontsize='small')
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
-
-
 def save_canvas(path):
     """Asks the simulator for a PNG of its canvas; returns (path written, None) or (None, error)."""
     try:
@@ -80,56 +57,61 @@ def save_canvas(path):
         return None, str(err)
 
 
+def running(launch, recorder):
+    """A predicate for wait_until: the launch and the bag recorder are both still up."""
+    return lambda: launch.alive() and recorder.alive()
+
+
 def run(args):
     """Runs the demo; returns the process exit code."""
     os.makedirs(args.out, exist_ok=True)
-    trails_png = os.path.join(args.out, 'convoy_trails.png')
-    gaps_png = os.path.join(args.out, 'convoy_gaps.png')
+    canvas_png = os.path.join(args.out, 'convoy_canvas.png')
+    bag_path = os.path.join(args.out, 'convoy.bag')
     launch = LaunchedConvoy(launch_for(args.n, args.gui), os.path.join(args.out, 'roslaunch.log'))
-    threshold_m = DEFAULT_TOLERANCE_M + CATCH_UP_MARGIN_M
+    recorder = BagRecorder(bag_path, convoy_topics(args.n), os.path.join(args.out, 'rosbag.log'))
     wall_start = time.monotonic()
     try:
         launch.start()
-        print('convoy_demo: %d robots, master %s, recording %.0f s'
-              % (args.n, launch.master_uri, args.duration), flush=True)
+        recorder.start()
+        print('convoy_demo: %d robots, master %s, recording %.0f s to %s'
+              % (args.n, launch.master_uri, args.duration, bag_path), flush=True)
         rospy.init_node('convoy_demo', anonymous=True, disable_signals=True)
-        recorder = ConvoyRecorder(args.n)
-        wait_until(recorder.all_seen, STARTUP_TIMEOUT_S,
-                   'the poses of robot1..robot%d' % args.n, launch.alive)
-        recorder.start_recording()
+        master = rosgraph.Master(rospy.get_name())
+        alive = running(launch, recorder)
+        poses = ['/robot%d/pose' % i for i in range(1, args.n + 1)]
+        wait_until(lambda: recorder.receiving(master, poses), STARTUP_TIMEOUT_S,
+                   'the poses of robot1..robot%d, recorded' % args.n, alive)
         t0 = time.monotonic()
         wait_until(lambda: time.monotonic() - t0 >= args.duration, args.duration + 5.0,
-                   'the end of the run', launch.alive)
-        recorder.stop_recording()
-        recorder.close()
-        saved, image_error = save_canvas(trails_png)
+                   'the end of the run', alive)
+        if recorder.stop() != 0:
+            raise HarnessError('rosbag record did not close %s (see %s)'
+                               % (bag_path, recorder.log_path))
+        saved, image_error = save_canvas(canvas_png)
     except (HarnessError, rospy.ROSException) as err:
         print('convoy_demo: FAILED: %s\nlast lines of %s:\n%s'
               % (err, launch.log_path, launch.log_tail()), file=sys.stderr)
         return 1
     finally:
         rospy.signal_shutdown('convoy_demo finished')
+        recorder.stop()
         code = launch.stop()
     if code not in (0, None):
         print('convoy_demo: note: roslaunch exited with code %s (see %s)'
               % (code, launch.log_path), file=sys.stderr)
 
-    series, lines = {}, []
-    for robot in range(2, args.n + 1):
-        leader, follower = recorder.poses[robot - 1], recorder.poses[robot]
-        series[robot] = [(t - t0, g) for t, g in gap_series(leader, follower)]
-        stats = follower_stats(leader, follower, threshold_m, t_origin_s=t0)
-        catch_up = ('%.1f s' % stats.catch_up_s if stats.catch_up_s is not None
-                    else 'never (within %.0f s)' % args.duration)
-        lines.append('| robot%d -> robot%d | %.2f | %.2f | %.0f %% | %s |'
-                     % (robot, robot - 1, stats.mean_gap_m, stats.max_gap_m,
-                        100.0 * stats.within_fraction, catch_up))
-    plot_gaps(gaps_png, series, DEFAULT_TOLERANCE_M, threshold_m)
-    print('\n| follower | mean gap (m) | max gap (m) | within %.1f m | catch-up |' % threshold_m)
-    print('|---|---|---|---|---|')
-    print('\n'.join(lines))
-    print('\ntrails: %s\ngaps:   %s\nlogs:   %s\nwall time: %.1f s'
-          % (saved or '(not written)', gaps_png, launch.log_path, time.monotonic() - wall_start))
+    # The table and figures come from the bag, through bag_report's code: anyone can remake
+    # them from the bag alone (rosrun convoy bag_report convoy.bag).
+    try:
+        report = summarise_bag(bag_path)
+    except BagError as err:
+        print('convoy_demo: FAILED: %s' % err, file=sys.stderr)
+        return 1
+    trails_png, gaps_png = write_figures(report, args.out, 'convoy')
+    print('\n' + '\n'.join(table_lines(report)))
+    print('\nbag:    %s\ntrails: %s\ngaps:   %s\ncanvas: %s\nlogs:   %s\nwall time: %.1f s'
+          % (bag_path, trails_png, gaps_png, saved or '(not written)', launch.log_path,
+             time.monotonic() - wall_start))
     if image_error:
         print('convoy_demo: FAILED: could not save the canvas through /turtlesim/save_image: %s'
               % image_error, file=sys.stderr)

@@ -43,6 +43,21 @@ def free_port():
         return sock.getsockname()[1]
 
 
+def interrupt(proc, timeout_s):
+    """SIGINT to a child started with start_new_session=True (ROS tools then shut down
+    cleanly), SIGKILL to its whole session after timeout_s; returns its exit code (None if
+    it had to be killed)."""
+    if proc.poll() is not None:
+        return proc.returncode
+    proc.send_signal(signal.SIGINT)
+    try:
+        return proc.wait(timeout_s)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        return None
+
+
 def launch_for(n_robots, gui=False):
     """roslaunch arguments for an autopilot convoy of n_robots (the course file for 3)."""
     gui_arg = 'gui:=%s' % ('true' if gui else 'false')
@@ -103,16 +118,7 @@ class LaunchedConvoy:
         Returns roslaunch's exit code (None if it had to be killed)."""
         if self._proc is None:
             return None
-        code = None
-        if self._proc.poll() is None:
-            self._proc.send_signal(signal.SIGINT)
-            try:
-                code = self._proc.wait(STOP_TIMEOUT_S)
-            except subprocess.TimeoutExpired:
-                os.killpg(self._proc.pid, signal.SIGKILL)
-                self._proc.wait()
-        else:
-            code = self._proc.returncode
+        code = interrupt(self._proc, STOP_TIMEOUT_S)
         self._log.close()
         self._proc = None
         return code
