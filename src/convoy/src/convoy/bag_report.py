@@ -21,10 +21,10 @@ from convoy.report import (
     chain_pairs,
     natural_key,
     parse_pairs,
+    pose_topics,
     report_pairs,
-    robot_of_topic,
     table_lines,
-    )
+)
 
 # "Caught up": within the course's tolerance plus half a metre of the leader.
 DEFAULT_WITHIN_M = DEFAULT_TOLERANCE_M + 0.5
@@ -32,17 +32,6 @@ DEFAULT_WITHIN_M = DEFAULT_TOLERANCE_M + 0.5
 
 class BagError(ValueError):
     """The file is not a readable bag of a convoy; the message is the one line to print."""
-
-
-def pose_topics(topic_info):
-    """{robot: topic} of the turtlesim/Pose '<robot>/pose' topics of a bag's topic table
-    ({topic: msg_type}); other types and names are left out."""
-    robots = {}
-    for topic, msg_type in topic_info.items():
-        robot = robot_of_topic(topic)
-        if robot is not None and msg_type == POSE_TYPE:
-            robots[robot] = topic
-    return robots
 
 
 def read_tracks(path):

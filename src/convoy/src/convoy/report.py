@@ -25,6 +25,17 @@ def robot_of_topic(topic):
     return robot or None
 
 
+def pose_topics(topic_info):
+    """{robot: topic} of the turtlesim/Pose '<robot>/pose' topics of a bag's topic table
+    ({topic: msg_type}); other types and names are left out."""
+    robots = {}
+    for topic, msg_type in topic_info.items():
+        robot = robot_of_topic(topic)
+        if robot is not None and msg_type == POSE_TYPE:
+            robots[robot] = topic
+    return robots
+
+
 def natural_key(name):
     """Sort key that puts robot2 before robot10 (numbers compare as numbers)."""
     return [(0, int(part), '') if part.isdigit() else (1, 0, part)

@@ -6,6 +6,7 @@ from convoy.report import (
     chain_pairs,
     natural_key,
     parse_pairs,
+    pose_topics,
     report_pairs,
     robot_of_topic,
     table_lines,
@@ -27,6 +28,19 @@ TOL = 1e-9  # absolute tolerance: closed-form arithmetic only
 ])
 def test_robot_of_topic(topic, robot):
     assert robot_of_topic(topic) == robot
+
+
+@pytest.mark.parametrize('types, robots', [
+    ({'/robot1/pose': 'turtlesim/Pose', '/robot2/pose': 'turtlesim/Pose',
+      '/robot1/cmd_vel': 'geometry_msgs/Twist', '/rosout': 'rosgraph_msgs/Log'},
+     {'robot1': '/robot1/pose', 'robot2': '/robot2/pose'}),
+    ({'/robot1/pose': 'geometry_msgs/Pose2D', '/robot2/pose': 'turtlesim/Pose'},
+     {'robot2': '/robot2/pose'}),
+    ({'/robot1/cmd_vel': 'geometry_msgs/Twist', '/pose': 'turtlesim/Pose'}, {}),
+    ({}, {}),
+])
+def test_pose_topics(types, robots):
+    assert pose_topics(types) == robots
 
 
 @pytest.mark.parametrize('names, ordered', [
