@@ -89,6 +89,9 @@ def run(args):
                                % (bag_path, recorder.log_path))
         saved, image_error = save_canvas(canvas_png)
     except (HarnessError, rospy.ROSException) as err:
+        if recorder.exited():
+            print('convoy_demo: rosbag record exited early: see %s' % recorder.log_path,
+                  file=sys.stderr)
         print('convoy_demo: FAILED: %s\nlast lines of %s:\n%s'
               % (err, launch.log_path, launch.log_tail()), file=sys.stderr)
         return 1

@@ -50,6 +50,10 @@ class BagRecorder:
     def alive(self):
         return self._proc is not None and self._proc.poll() is None
 
+    def exited(self):
+        """True when the recorder was started and has ended on its own (not through stop())."""
+        return self._proc is not None and self._proc.poll() is not None
+
     def receiving(self, master, topics):
         """True once each of `topics` has a publisher and this recorder among its subscribers,
         as `master` (a rosgraph.Master) sees the graph."""
@@ -69,9 +73,3 @@ class BagRecorder:
         self._log.close()
         self._proc = None
         return code
-
-    def __enter__(self):
-        return self.start()
-
-    def __exit__(self, *exc):
-        self.stop()
