@@ -89,11 +89,12 @@ def run(args):
                                % (bag_path, recorder.log_path))
         saved, image_error = save_canvas(canvas_png)
     except (HarnessError, rospy.ROSException) as err:
+        # wait_until blames the launch for either process: name the recorder when it was it.
+        failed, reason = launch, err
         if recorder.exited():
-            print('convoy_demo: rosbag record exited early: see %s' % recorder.log_path,
-                  file=sys.stderr)
+            failed, reason = recorder, 'rosbag record exited before the end of the run'
         print('convoy_demo: FAILED: %s\nlast lines of %s:\n%s'
-              % (err, launch.log_path, launch.log_tail()), file=sys.stderr)
+              % (reason, failed.log_path, failed.log_tail()), file=sys.stderr)
         return 1
     finally:
         rospy.signal_shutdown('convoy_demo finished')

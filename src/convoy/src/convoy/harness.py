@@ -1,6 +1,7 @@
 """Runs a convoy launch file on a private master and records it (used by convoy_demo and bench).
 
-LaunchedConvoy owns the roslaunch process; ConvoyRecorder is the recording node (rospy).
+LaunchedConvoy owns the roslaunch process (a ChildProcess, like convoy.recording's rosbag
+recorder of the demo); ConvoyRecorder is the bench's live recording node (rospy).
 """
 import os
 import signal
@@ -43,21 +44,6 @@ def free_port():
         return sock.getsockname()[1]
 
 
-def interrupt(proc, timeout_s):
-    """SIGINT to a child started with start_new_session=True (ROS tools then shut down
-    cleanly), SIGKILL to its whole session after timeout_s; returns its exit code (None if
-    it had to be killed)."""
-    if proc.poll() is not None:
-        return proc.returncode
-    proc.send_signal(signal.SIGINT)
-    try:
-        return proc.wait(timeout_s)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
-        return None
-
-
 def launch_for(n_robots, gui=False):
     """roslaunch arguments for an autopilot convoy of n_robots (the course file for 3)."""
     gui_arg = 'gui:=%s' % ('true' if gui else 'false')
@@ -73,37 +59,31 @@ def convoy_node_names(n_robots):
     return ['/convoy_robot%d' % i for i in range(2, n_robots + 1)]
 
 
-class LaunchedConvoy:
-    """A roslaunch of the convoy with its own master on a free port; a context manager.
+class ChildProcess:
+    """A child process in a session of its own, its stdout and stderr in a log file.
 
-    Sets ROS_MASTER_URI (and ROS_LOG_DIR) in this process's environment, so a rospy node
-    initialised afterwards joins that master.
+    stop() sends SIGINT (ROS tools then shut down cleanly: roslaunch stops its nodes and
+    master, rosbag record closes its bag) and SIGKILLs the session after stop_timeout_s.
     """
 
-    def __init__(self, launch_args, log_path, port=None):
-        self.port = port or free_port()
-        self.master_uri = 'http://localhost:%d' % self.port
+    stop_timeout_s = STOP_TIMEOUT_S
+
+    def __init__(self, log_path):
         self.log_path = log_path
-        self.launch_args = launch_args
-        self.started_at = None
         self._proc = None
         self._log = None
 
-    def start(self):
-        os.environ['ROS_MASTER_URI'] = self.master_uri
-        os.environ.setdefault('ROS_LOG_DIR', os.path.join(os.path.dirname(self.log_path),
-                                                          'ros_log'))
+    def _spawn(self, args):
         self._log = open(self.log_path, 'w')  # noqa: SIM115 (closed in stop())
-        self.started_at = time.monotonic()
-        self._proc = subprocess.Popen(['roslaunch', '-p', str(self.port)] + self.launch_args,
-                                      stdout=self._log, stderr=subprocess.STDOUT,
+        self._proc = subprocess.Popen(args, stdout=self._log, stderr=subprocess.STDOUT,
                                       env=dict(os.environ), start_new_session=True)
-        master = rosgraph.Master('/convoy_harness', master_uri=self.master_uri)
-        wait_until(master.is_online, 30.0, 'the master at %s' % self.master_uri, self.alive)
-        return self
 
     def alive(self):
         return self._proc is not None and self._proc.poll() is None
+
+    def exited(self):
+        """True when the process was started and has ended on its own (not through stop())."""
+        return self._proc is not None and self._proc.poll() is not None
 
     def log_tail(self, lines=15):
         try:
@@ -113,12 +93,19 @@ class LaunchedConvoy:
             return ''
 
     def stop(self):
-        """SIGINT to roslaunch (it stops its nodes and master), then escalate if needed.
+        """SIGINT, then SIGKILL if needed; idempotent.
 
-        Returns roslaunch's exit code (None if it had to be killed)."""
+        Returns the exit code (None if it had to be killed or never started)."""
         if self._proc is None:
             return None
-        code = interrupt(self._proc, STOP_TIMEOUT_S)
+        code = self._proc.poll()
+        if code is None:
+            self._proc.send_signal(signal.SIGINT)
+            try:
+                code = self._proc.wait(self.stop_timeout_s)
+            except subprocess.TimeoutExpired:
+                os.killpg(self._proc.pid, signal.SIGKILL)
+                self._proc.wait()
         self._log.close()
         self._proc = None
         return code
@@ -128,6 +115,31 @@ class LaunchedConvoy:
 
     def __exit__(self, *exc):
         self.stop()
+
+
+class LaunchedConvoy(ChildProcess):
+    """A roslaunch of the convoy with its own master on a free port; a context manager.
+
+    Sets ROS_MASTER_URI (and ROS_LOG_DIR) in this process's environment, so a rospy node
+    initialised afterwards joins that master.
+    """
+
+    def __init__(self, launch_args, log_path, port=None):
+        super().__init__(log_path)
+        self.port = port or free_port()
+        self.master_uri = 'http://localhost:%d' % self.port
+        self.launch_args = launch_args
+        self.started_at = None
+
+    def start(self):
+        os.environ['ROS_MASTER_URI'] = self.master_uri
+        os.environ.setdefault('ROS_LOG_DIR', os.path.join(os.path.dirname(self.log_path),
+                                                          'ros_log'))
+        self.started_at = time.monotonic()
+        self._spawn(['roslaunch', '-p', str(self.port)] + self.launch_args)
+        master = rosgraph.Master('/convoy_harness', master_uri=self.master_uri)
+        wait_until(master.is_online, 30.0, 'the master at %s' % self.master_uri, self.alive)
+        return self
 
 
 class ConvoyRecorder:
