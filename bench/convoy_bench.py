@@ -12,8 +12,10 @@ its own master on a free port. Latency is measured two ways during the run:
   gives back, so every command is matched to the pose it answers: latency = command received
   - pose sent (two TCPROS hops and this script's own overhead included: an upper bound);
 - observed (per follower of the convoy): command received - that follower's newest pose
-  received here. Its p99 is inflated when a command overtakes its pose on the way to this
-  script (then it pairs with the previous pose, 16 ms earlier), so only its median is shown.
+  received, both as `rosbag record` received them (the run's bag). Its p99 is inflated when a
+  command overtakes its pose on the way to the recorder (then it pairs with the previous pose,
+  16 ms earlier), so only its median is shown.
+The gap figures are bag_report's on the same bag (the bag's path is printed at the end).
 """
 import json
 import os
@@ -113,30 +115,52 @@ def _proc_rss_mb(pid):
     return float('nan')
 
 
+def bag_timing(bag_path, n_robots):
+    """Receipt times in the bag: {robot: pose times}, {robot: command times}, {robot: time of
+    its first pose with a forward speed}."""
+    import rosbag
+    from convoy.recording import convoy_topics
+
+    poses = {i: [] for i in range(1, n_robots + 1)}
+    commands = {i: [] for i in range(1, n_robots + 1)}
+    first_moving = {}
+    with rosbag.Bag(bag_path) as bag:
+        for topic, msg, stamp in bag.read_messages(topics=convoy_topics(n_robots)):
+            robot, kind = int(topic.split('/')[1][len('robot'):]), topic.split('/')[2]
+            if kind == 'pose':
+                poses[robot].append(stamp.to_sec())
+                if msg.linear_velocity > 0.0:
+                    first_moving.setdefault(robot, stamp.to_sec())
+            else:
+                commands[robot].append(stamp.to_sec())
+    return ({r: sorted(t) for r, t in poses.items()}, {r: sorted(t) for r, t in commands.items()},
+            first_moving)
+
+
 def child(n_robots, duration_s):
     """One run; prints a JSON result on its last line."""
     import rosgraph
     import rosnode
     import rospy
-    from convoy.harness import (
-        ConvoyRecorder,
-        LaunchedConvoy,
-        convoy_node_names,
-        launch_for,
-        wait_until,
-    )
-    from convoy.metrics import follower_stats, percentile
+    from convoy.bag_report import summarise_bag
+    from convoy.harness import LaunchedConvoy, convoy_node_names, launch_for, wait_until
+    from convoy.metrics import delays_since_newest, percentile
+    from convoy.recording import BagRecorder, convoy_topics
 
     out_dir = tempfile.mkdtemp(prefix='convoy_bench_')
+    bag_path = os.path.join(out_dir, 'convoy.bag')
     launch = LaunchedConvoy(launch_for(n_robots), os.path.join(out_dir, 'roslaunch.log'))
+    recorder = BagRecorder(bag_path, convoy_topics(n_robots), os.path.join(out_dir, 'rosbag.log'))
     try:
         launch.start()
+        launch_wall_s = time.time() - (time.monotonic() - launch.started_at)  # the bag's clock
+        recorder.start()
         rospy.init_node('convoy_bench', anonymous=True, disable_signals=True)
-        recorder = ConvoyRecorder(n_robots, record_commands=True)
-        wait_until(recorder.all_seen, STARTUP_TIMEOUT_S, 'every robot', launch.alive)
-        recorder.start_recording()  # at once: the followers' catch-up from the corner counts
-        t0 = time.monotonic()
         master = rosgraph.Master('/convoy_bench')
+        poses = ['/robot%d/pose' % i for i in range(1, n_robots + 1)]
+        wait_until(lambda: recorder.receiving(master, poses), STARTUP_TIMEOUT_S, 'every robot',
+                   launch.alive)
+        t0 = time.monotonic()  # the figures start here: the followers' catch-up counts
         names = convoy_node_names(n_robots)
         wait_until(lambda: set(names) <= set(rosnode.get_node_names()), STARTUP_TIMEOUT_S,
                    'the convoy nodes', launch.alive)
@@ -152,29 +176,34 @@ def child(n_robots, duration_s):
         wall = time.monotonic() - cpu_t0
         cpu = {name: 100.0 * (_proc_cpu_s(pid) - cpu0[name]) / wall for name, pid in pids.items()}
         rss = {name: _proc_rss_mb(pid) for name, pid in pids.items()}
-        recorder.stop_recording()
-        recorder.close()
+        recorder.stop()
         probe.stop()
     finally:
         rospy.signal_shutdown('bench run done')
+        recorder.stop()
         launch.stop()
-    moving = [recorder.first_moving.get(r) for r in range(2, n_robots + 1)]
+    # Gaps exactly as bag_report computes them; timings from the same bag's receipt times.
+    report = summarise_bag(bag_path, within_m=WITHIN_M)
+    pose_times, command_times, first_moving = bag_timing(bag_path, n_robots)
+    moving = [first_moving.get(r) for r in range(2, n_robots + 1)]
     rows = []
-    for robot, name in zip(range(2, n_robots + 1), names, strict=True):
-        stats = follower_stats(recorder.poses[robot - 1], recorder.poses[robot], WITHIN_M, t0)
-        lat = recorder.latencies_s[robot]
-        rows.append({'follower': robot, 'node': name, 'mean_gap_m': stats.mean_gap_m,
-                     'max_gap_m': stats.max_gap_m, 'within': stats.within_fraction,
+    for pair, name in zip(report.pairs, names, strict=True):
+        robot = int(pair.follower[len('robot'):])
+        lat = delays_since_newest(pose_times[robot],
+                                  [t for t in command_times[robot] if t >= report.start_s])
+        rows.append({'follower': robot, 'node': name, 'mean_gap_m': pair.stats.mean_gap_m,
+                     'max_gap_m': pair.stats.max_gap_m, 'within': pair.stats.within_fraction,
                      'lat_median_ms': 1e3 * percentile(lat, 0.5) if lat else None,
                      'lat_p99_ms': 1e3 * percentile(lat, 0.99) if lat else None,
                      'commands': len(lat), 'cpu_pct': cpu[name], 'rss_mb': rss[name]})
-    all_moving = (None if None in moving else max(moving) - launch.started_at)
+    all_moving = (None if None in moving else max(moving) - launch_wall_s)
     probe_lat = probe.latencies_s
     print(json.dumps({'n': n_robots, 'duration_s': duration_s, 'all_moving_s': all_moving,
                       'rows': rows, 'probe_commands': len(probe_lat),
                       'probe_unmatched': probe.unmatched,
                       'probe_median_ms': 1e3 * percentile(probe_lat, 0.5),
-                      'probe_p99_ms': 1e3 * percentile(probe_lat, 0.99)}))
+                      'probe_p99_ms': 1e3 * percentile(probe_lat, 0.99),
+                      'bag': bag_path}))
 
 
 def _fmt(value, pattern):
@@ -217,6 +246,8 @@ def main():
               % (result['n'], result['duration_s'], _fmt(result['all_moving_s'], '%.1f'),
                  result['probe_median_ms'], result['probe_p99_ms'], result['probe_commands'],
                  result['probe_unmatched']))
+    print('\nbags (rosrun convoy bag_report BAG remakes the gap figures): %s'
+          % ' '.join(result['bag'] for result in results))
     print('\nconvoy_bench: done in %.0f s' % (time.monotonic() - started))
     return 0
 

@@ -1,19 +1,15 @@
-"""Runs a convoy launch file on a private master and records it (used by convoy_demo and bench).
+"""Runs a convoy launch file on a private master (used by convoy_demo and the bench).
 
-LaunchedConvoy owns the roslaunch process (a ChildProcess, like convoy.recording's rosbag
-recorder of the demo); ConvoyRecorder is the bench's live recording node (rospy).
+LaunchedConvoy owns the roslaunch process, a ChildProcess like convoy.recording's rosbag
+recorder, which records the run.
 """
 import os
 import signal
 import socket
 import subprocess
-import threading
 import time
 
 import rosgraph
-import rospy
-from geometry_msgs.msg import Twist
-from turtlesim.msg import Pose
 
 POLL_S = 0.05  # condition polling period
 STOP_TIMEOUT_S = 20.0  # roslaunch needs a few seconds to stop its nodes and master
@@ -140,65 +136,3 @@ class LaunchedConvoy(ChildProcess):
         master = rosgraph.Master('/convoy_harness', master_uri=self.master_uri)
         wait_until(master.is_online, 30.0, 'the master at %s' % self.master_uri, self.alive)
         return self
-
-
-class ConvoyRecorder:
-    """Records the poses (and optionally the commands) of robot1..robot<n>.
-
-    Subscribes:
-        /robot<i>/pose (turtlesim/Pose) for i = 1..n.
-        /robot<i>/cmd_vel (geometry_msgs/Twist) for i = 2..n, if record_commands.
-    Publishes, services, parameters: none.
-    Samples are (t_s, x_m, y_m) with t from time.monotonic(); command receipt times pair with
-    the newest follower pose received before them (the bench's latency).
-    """
-
-    def __init__(self, n_robots, record_commands=False):
-        self.n_robots = n_robots
-        self._lock = threading.Lock()
-        self.poses = {i: [] for i in range(1, n_robots + 1)}
-        self.first_moving = {}
-        self.latencies_s = {i: [] for i in range(2, n_robots + 1)}
-        self._recording = False
-        self._last_pose_at = {}
-        self._subs = [rospy.Subscriber('/robot%d/pose' % i, Pose, self._on_pose, i,
-                                       queue_size=50)
-                      for i in range(1, n_robots + 1)]
-        if record_commands:
-            self._subs += [rospy.Subscriber('/robot%d/cmd_vel' % i, Twist, self._on_cmd, i,
-                                            queue_size=50)
-                           for i in range(2, n_robots + 1)]
-
-    def _on_pose(self, msg, robot):
-        now = time.monotonic()
-        with self._lock:
-            self._last_pose_at[robot] = now
-            if msg.linear_velocity > 0.0 and robot not in self.first_moving:
-                self.first_moving[robot] = now
-            if self._recording or not self.poses[robot]:
-                self.poses[robot].append((now, msg.x, msg.y))
-
-    def _on_cmd(self, _msg, robot):
-        now = time.monotonic()
-        with self._lock:
-            pose_at = self._last_pose_at.get(robot)
-            if self._recording and pose_at is not None:
-                self.latencies_s[robot].append(now - pose_at)
-
-    def all_seen(self):
-        with self._lock:
-            return all(self.poses.values())
-
-    def start_recording(self):
-        with self._lock:
-            for samples in self.poses.values():
-                del samples[:]
-            self._recording = True
-
-    def stop_recording(self):
-        with self._lock:
-            self._recording = False
-
-    def close(self):
-        for sub in self._subs:
-            sub.unregister()

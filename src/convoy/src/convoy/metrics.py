@@ -83,6 +83,26 @@ def follower_stats(leader, follower, threshold_m, t_origin_s=None):
         settled_max_gap_m=max(settled) if settled else None)
 
 
+def delays_since_newest(causes_s, effects_s):
+    """For each effect time, the time since the newest cause at or before it (seconds).
+
+    E.g. a follower's pose receipt times and its command receipt times: each command answers
+    the newest pose. Effects before the first cause are skipped; both lists in time order.
+    Raises ValueError if a list's times decrease or are not finite.
+    """
+    for name, times in (('causes', causes_s), ('effects', effects_s)):
+        if not all(math.isfinite(t) for t in times):
+            raise ValueError('%s: times must be finite' % name)
+        if any(b < a for a, b in zip(times, times[1:], strict=False)):
+            raise ValueError('%s: times must not decrease' % name)
+    delays = []
+    for t in effects_s:
+        k = bisect_right(causes_s, t) - 1
+        if k >= 0:
+            delays.append(t - causes_s[k])
+    return delays
+
+
 def percentile(values, fraction):
     """The `fraction` (0..1) percentile of values, nearest-rank. Raises ValueError if empty."""
     if not values:

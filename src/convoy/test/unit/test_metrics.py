@@ -2,7 +2,13 @@
 import math
 
 import pytest
-from convoy.metrics import catch_up_time, follower_stats, gap_series, percentile
+from convoy.metrics import (
+    catch_up_time,
+    delays_since_newest,
+    follower_stats,
+    gap_series,
+    percentile,
+)
 
 TOL = 1e-9  # absolute tolerance: closed-form arithmetic only
 
@@ -77,3 +83,25 @@ def test_percentile(values, fraction, expected):
 def test_percentile_rejects_bad_input(values, fraction):
     with pytest.raises(ValueError):
         percentile(values, fraction)
+
+
+@pytest.mark.parametrize('causes, effects, delays', [
+    ([1.0, 2.0, 3.0], [1.5, 2.0, 3.25], [0.5, 0.0, 0.25]),
+    ([1.0, 2.0], [0.5, 1.0, 5.0], [0.0, 3.0]),  # the effect before any cause is skipped
+    ([1.0, 2.0], [1.1, 1.2], [pytest.approx(0.1), pytest.approx(0.2)]),  # one cause, two effects
+    ([], [1.0], []),
+    ([1.0], [], []),
+])
+def test_delays_since_newest(causes, effects, delays):
+    assert delays_since_newest(causes, effects) == delays
+
+
+@pytest.mark.parametrize('causes, effects', [
+    ([2.0, 1.0], [3.0]),
+    ([1.0], [3.0, 2.0]),
+    ([math.nan], [1.0]),
+    ([1.0], [math.inf]),
+])
+def test_delays_since_newest_rejects(causes, effects):
+    with pytest.raises(ValueError):
+        delays_since_newest(causes, effects)
