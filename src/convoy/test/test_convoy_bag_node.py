@@ -146,6 +146,14 @@ class TestConvoyBag(unittest.TestCase):
             text.write('robot1 robot2 robot3\n')
         self.assert_rejected(bag_report(path), 'not a readable bag file')
 
+    def test_rejects_an_unindexed_bag(self):
+        # What a recorder killed before it closed its bag leaves: data without the index.
+        whole, cut = self.path('whole.bag'), self.path('cut.bag')
+        write_course_bag(whole)
+        with open(whole, 'rb') as src, open(cut, 'wb') as dst:
+            dst.write(src.read(os.path.getsize(whole) // 2))
+        self.assert_rejected(bag_report(cut), 'run "rosbag reindex %s" first' % cut)
+
     def test_rejects_a_missing_file(self):
         self.assert_rejected(bag_report(self.path('missing.bag')), 'No such file')
 
