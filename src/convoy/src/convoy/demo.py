@@ -31,7 +31,7 @@ def parse_args(argv):
     parser = argparse.ArgumentParser(
         prog='convoy_demo', description='Run the convoy with its autopilot leader, headless, '
         'and write a picture of the trails and a plot of the gaps.')
-    parser.add_argument('--out', required=True, help='directory for the PNGs and logs')
+    parser.add_argument('--out', required=True, help='directory for the bag, the PNGs and the logs')
     parser.add_argument('--duration', type=float, default=DEFAULT_DURATION_S,
                         help='seconds to record once every robot is up (default %(default)s)')
     parser.add_argument('--n', type=int, default=3,
