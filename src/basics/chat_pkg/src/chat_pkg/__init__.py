@@ -1,0 +1,1 @@
+"""The ROS basics deck's talker and listener (chat_pkg)."""

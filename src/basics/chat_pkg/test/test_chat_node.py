@@ -1,0 +1,160 @@
+#!/usr/bin/env python3
+"""Integration test of chat.launch and the slide's two renamed talkers (__name:=talker1/2)."""
+import os
+import re
+import signal
+import subprocess
+import threading
+import unittest
+from collections import defaultdict
+
+import rosgraph
+import rospy
+import rostest
+from rosgraph_msgs.msg import Log
+from std_msgs.msg import String
+from turtle_lite.testing import wait_for
+
+PKG = 'chat_pkg'
+START_DEADLINE_S = 30.0  # rosrun + rospy start-up on a loaded 2-core machine
+EXIT_DEADLINE_S = 15.0
+MESSAGES_WANTED = 20  # two seconds at 10 Hz: enough to see an order
+TEXT = re.compile(r'^hello world (\d+)$')  # the slide's "hello world " << count
+HEARD = re.compile(r'^I heard: \[hello world (\d+)\]$')  # the slide's "I heard: [%s]"
+
+
+def counts(texts, pattern):
+    """The counts in texts that all match pattern (fails on a text that does not)."""
+    found = []
+    for text in texts:
+        match = pattern.match(text)
+        if not match:
+            raise AssertionError('unexpected text %r (expected %s)' % (text, pattern.pattern))
+        found.append(int(match.group(1)))
+    return found
+
+
+def consecutive(values):
+    return bool(values) and values == list(range(values[0], values[0] + len(values)))
+
+
+def stop(proc):
+    """SIGINT (Ctrl-C) and the process's exit code and output."""
+    if proc.poll() is None:
+        proc.send_signal(signal.SIGINT)
+    output, _ = proc.communicate(timeout=EXIT_DEADLINE_S)
+    return proc.returncode, output
+
+
+class Recorder:
+    """Everything heard on /chatter (by publisher) and /rosout (by node), in arrival order."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._chatter = defaultdict(list)
+        self._logs = defaultdict(list)
+        self._subs = [rospy.Subscriber('/chatter', String, self._on_chatter, queue_size=1000),
+                      rospy.Subscriber('/rosout', Log, self._on_log, queue_size=1000)]
+
+    def _on_chatter(self, msg):
+        with self._lock:
+            self._chatter[msg._connection_header['callerid']].append(msg.data)
+
+    def _on_log(self, msg):
+        with self._lock:
+            self._logs[msg.name].append(msg.msg)
+
+    def chatter(self, node):
+        with self._lock:
+            return list(self._chatter[node])
+
+    def logs(self, node):
+        with self._lock:
+            return list(self._logs[node])
+
+
+def _nodes_of(topic, column):
+    state = rosgraph.Master('/test_chat').getSystemState()
+    return {node for name, nodes in state[column] if name == topic for node in nodes}
+
+
+def publishers_of(topic):
+    return _nodes_of(topic, 0)
+
+
+def subscribers_of(topic):
+    return _nodes_of(topic, 1)
+
+
+def rosrun_talker(name):
+    return subprocess.Popen(['rosrun', PKG, 'talker', '__name:=' + name], stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True, env=dict(os.environ))
+
+
+class TestChat(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_chat')
+        cls.rec = Recorder()
+
+    def _wait_messages(self, node, n=MESSAGES_WANTED):
+        wait_for(lambda: len(self.rec.chatter(node)) >= n, START_DEADLINE_S,
+                 '%d messages from %s on /chatter' % (n, node))
+        return counts(self.rec.chatter(node), TEXT)
+
+    def test_1_talker_counts_arrive_in_order(self):
+        heard = self._wait_messages('/talker')
+        self.assertTrue(consecutive(heard), heard)
+        # The talker logs each text it publishes, with the same count.
+        logged = counts(self.rec.logs('/talker'), TEXT)
+        self.assertTrue(consecutive(logged), logged)
+        self.assertTrue(set(heard) & set(logged), (heard, logged))
+
+    def test_2_listener_logs_what_it_hears(self):
+        self.assertEqual(publishers_of('/chatter'), {'/talker'})
+        self.assertIn('/listener', subscribers_of('/chatter'))
+        wait_for(lambda: len(self.rec.logs('/listener')) >= MESSAGES_WANTED, START_DEADLINE_S,
+                 '%d "I heard" lines of /listener on /rosout' % MESSAGES_WANTED)
+        heard = counts(self.rec.logs('/listener'), HEARD)
+        self.assertTrue(consecutive(heard), heard)
+        talked = counts(self.rec.logs('/talker'), TEXT)
+        self.assertLessEqual(set(heard), set(range(talked[-1] + 1)), 'heard a count never sent')
+
+    def test_3_two_renamed_talkers_both_publish(self):
+        talkers = {name: rosrun_talker(name) for name in ('talker1', 'talker2')}
+        try:
+            for name in talkers:
+                heard = self._wait_messages('/' + name)
+                self.assertTrue(consecutive(heard), (name, heard))
+            self.assertEqual(publishers_of('/chatter'), {'/talker', '/talker1', '/talker2'})
+            self.assertTrue(consecutive(counts(self.rec.chatter('/talker'), TEXT)))
+        finally:
+            results = {name: stop(proc) for name, proc in talkers.items()}
+        for name, (code, output) in results.items():
+            self.assertEqual(code, 0, output)
+            self.assertIn('hello world 0', output, name)
+        wait_for(lambda: publishers_of('/chatter') == {'/talker'}, EXIT_DEADLINE_S,
+                 'talker1 and talker2 to leave /chatter')
+
+    def test_4_same_name_twice_the_older_exits(self):
+        # The slide: "If the same node is launched twice, roscore directs the older node to exit".
+        older = rosrun_talker('talker_twin')
+        newer = None
+        try:
+            self._wait_messages('/talker_twin', 1)
+            newer = rosrun_talker('talker_twin')
+            wait_for(lambda: older.poll() is not None, START_DEADLINE_S,
+                     'the older talker_twin to exit')
+            seen = len(self.rec.chatter('/talker_twin'))
+            self._wait_messages('/talker_twin', seen + 5)
+            self.assertIsNone(newer.poll(), 'the newer talker_twin exited too')
+        finally:
+            code, output = stop(older)
+            if newer is not None:
+                stop(newer)
+        self.assertIn('new node registered with same name', output)
+        self.assertNotIn('Traceback', output)
+
+
+if __name__ == '__main__':
+    rostest.rosrun(PKG, 'chat', TestChat)

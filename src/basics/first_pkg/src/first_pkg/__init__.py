@@ -1,0 +1,1 @@
+"""The ROS basics deck's first package (first_pkg): the hello node."""

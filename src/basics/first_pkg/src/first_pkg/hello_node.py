@@ -1,0 +1,35 @@
+"""The basics deck's first node (hello): logs "hello world<count>" at 10 Hz."""
+import rospy
+
+RATE_HZ = 10  # the slide's ros::Rate loop_rate(10)
+# The slide's ROS_INFO_STREAM("hello world" << count): no space before the count, so the
+# screen reads "hello world0", "hello world1", ... exactly as a student's C++ node prints.
+LINE = 'hello world%d'
+
+
+class HelloNode:
+    """Logs one line per cycle with a count that starts at 0.
+
+    Subscribes: none. Publishes: only its log lines (on /rosout, as every node).
+    Services: none. Parameters: none.
+    """
+
+    def __init__(self, rate_hz=RATE_HZ):
+        self._rate = rospy.Rate(rate_hz)
+        self.count = 0
+
+    def spin(self):
+        """Loops until ROS shuts down (Ctrl-C), like the slide's while (ros::ok())."""
+        while not rospy.is_shutdown():
+            rospy.loginfo(LINE, self.count)
+            try:
+                self._rate.sleep()
+            except rospy.ROSInterruptException:
+                return  # Ctrl-C during the sleep: a normal exit
+            self.count += 1
+
+
+def main():
+    """Entry point of hello."""
+    rospy.init_node('hello')
+    HelloNode().spin()
