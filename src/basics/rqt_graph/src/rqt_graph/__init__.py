@@ -1,0 +1,1 @@
+"""A light stand-in for rqt_graph: the live ROS graph, drawn with graphviz."""

@@ -1,0 +1,111 @@
+"""rqt_graph's entry point: the live ROS graph in a Tk window, or written to PNG, SVG or DOT.
+
+Reads the master through rosgraph's master API, like `rosnode list` and `rostopic list`; it
+registers no node, so it never appears in the graph it draws.
+"""
+import argparse
+import os
+import socket
+import sys
+import xmlrpc.client
+
+import rosgraph
+
+from .dotcode import RenderError, build_dot, output_format, render
+from .graph_model import filter_graph, graph_from_state
+
+CALLER_ID = '/rqt_graph'  # master calls name a caller; no node of that name is registered
+DEFAULT_OUT = 'rqt_graph.png'  # where the graph goes when there is no display and no --out
+#: A master that does not answer within this is reported as unreachable (a host that drops
+#: packets would otherwise hang the tool for minutes).
+MASTER_TIMEOUT_S = 5.0
+REFRESH_S = 1.0  # the window asks the master this often; rqt_graph refreshes on demand
+
+
+class MasterUnreachable(RuntimeError):
+    """The master did not answer."""
+
+
+class GraphSource:
+    """The current graph from the master, filtered, as a RosGraph and its pydot.Dot."""
+
+    def __init__(self, master, show_all=False, hide_leaf_topics=False, groups=True):
+        self._master = master
+        self._show_all = show_all
+        self._hide_leaf_topics = hide_leaf_topics
+        self._groups = groups
+
+    def read(self):
+        """(graph, dot); raises MasterUnreachable."""
+        try:
+            state = self._master.getSystemState()
+            types = self._master.getTopicTypes()
+        except (OSError, xmlrpc.client.Error, rosgraph.MasterException) as err:
+            raise MasterUnreachable('cannot reach the ROS master at %s (ROS_MASTER_URI): %s'
+                                    % (self._master.master_uri, err)) from None
+        graph = filter_graph(graph_from_state(state, types), hide_debug=not self._show_all,
+                             hide_leaf_topics=self._hide_leaf_topics)
+        return graph, build_dot(graph, clusters=self._groups)
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(
+        prog='rqt_graph',
+        description='Draws the running ROS graph (nodes, topics, who publishes and subscribes '
+                    'what) as rqt_graph\'s Nodes/Topics (all) view. With a display it opens a '
+                    'window that follows the graph; without one it writes %s and exits.'
+                    % DEFAULT_OUT)
+    parser.add_argument('--out', metavar='FILE',
+                        help='write FILE (.png, .svg or .dot) and exit, even with a display')
+    parser.add_argument('--all', action='store_true',
+                        help='also show /rosout (node and topic) and graph viewers (/rqt_*)')
+    parser.add_argument('--hide-leaf-topics', action='store_true',
+                        help='hide topics with a publisher and no subscriber, or the reverse')
+    parser.add_argument('--no-groups', action='store_true',
+                        help='no box around each namespace')
+    args = parser.parse_args(argv)
+    if args.out is not None:
+        try:
+            args.format = output_format(args.out)
+        except ValueError as err:
+            parser.error(str(err))
+    return args
+
+
+def write_file(source, path, fmt):
+    """Writes the graph to path; returns the graph written."""
+    graph, dot = source.read()
+    data = render(dot, fmt)
+    with open(path, 'wb') as out:
+        out.write(data)
+    return graph
+
+
+def main(argv=None):
+    """Entry point of rqt_graph; returns only through sys.exit."""
+    args = parse_args(rosgraph.myargv(sys.argv if argv is None else argv)[1:])
+    socket.setdefaulttimeout(MASTER_TIMEOUT_S)
+    source = GraphSource(rosgraph.Master(CALLER_ID), show_all=args.all,
+                         hide_leaf_topics=args.hide_leaf_topics, groups=not args.no_groups)
+    out, fmt = args.out, getattr(args, 'format', None)
+    try:
+        source.read()  # fail early, before any window opens, if the master is not there
+        if out is None:
+            from .window import WindowUnavailable, open_root, run_window
+            try:
+                root = open_root()
+            except WindowUnavailable as why:
+                out, fmt = DEFAULT_OUT, 'png'
+                print('rqt_graph: no window (%s): writing %s instead' % (why, out))
+            else:
+                run_window(root, source, REFRESH_S)
+                sys.exit(0)
+        graph = write_file(source, out, fmt)
+    except (MasterUnreachable, RenderError) as err:
+        print('rqt_graph: %s' % err, file=sys.stderr)
+        sys.exit(1)
+    except OSError as err:
+        print('rqt_graph: cannot write %s: %s' % (out, err.strerror or err), file=sys.stderr)
+        sys.exit(1)
+    print('rqt_graph: wrote %s (%s)' % (os.path.abspath(out), graph.counts()))
+    sys.exit(0)
