@@ -22,7 +22,7 @@ MASTER_TIMEOUT_S = 5.0
 REFRESH_S = 1.0  # the window asks the master this often; rqt_graph refreshes on demand
 
 
-class MasterUnreachable(RuntimeError):
+class MasterUnreachableError(RuntimeError):
     """The master did not answer."""
 
 
@@ -36,12 +36,12 @@ class GraphSource:
         self._groups = groups
 
     def read(self):
-        """(graph, dot); raises MasterUnreachable."""
+        """(graph, dot); raises MasterUnreachableError."""
         try:
             state = self._master.getSystemState()
             types = self._master.getTopicTypes()
         except (OSError, xmlrpc.client.Error, rosgraph.MasterException) as err:
-            raise MasterUnreachable('cannot reach the ROS master at %s (ROS_MASTER_URI): %s'
+            raise MasterUnreachableError('cannot reach the ROS master at %s (ROS_MASTER_URI): %s'
                                     % (self._master.master_uri, err)) from None
         graph = filter_graph(graph_from_state(state, types), hide_debug=not self._show_all,
                              hide_leaf_topics=self._hide_leaf_topics)
@@ -91,17 +91,17 @@ def main(argv=None):
     try:
         source.read()  # fail early, before any window opens, if the master is not there
         if out is None:
-            from .window import WindowUnavailable, open_root, run_window
+            from .window import WindowUnavailableError, open_root, run_window
             try:
                 root = open_root()
-            except WindowUnavailable as why:
+            except WindowUnavailableError as why:
                 out, fmt = DEFAULT_OUT, 'png'
                 print('rqt_graph: no window (%s): writing %s instead' % (why, out))
             else:
                 run_window(root, source, REFRESH_S)
                 sys.exit(0)
         graph = write_file(source, out, fmt)
-    except (MasterUnreachable, RenderError) as err:
+    except (MasterUnreachableError, RenderError) as err:
         print('rqt_graph: %s' % err, file=sys.stderr)
         sys.exit(1)
     except OSError as err:

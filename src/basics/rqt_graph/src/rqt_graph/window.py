@@ -9,7 +9,7 @@ import os
 import signal
 import threading
 
-from .cli import MasterUnreachable
+from .cli import MasterUnreachableError
 from .dotcode import RenderError, render
 
 TITLE = 'rqt_graph'
@@ -17,19 +17,19 @@ POLL_MS = 200  # how often the Tk thread looks for a new picture: prompt, and ch
 SCREEN_MARGIN_PX = (40, 120)  # a picture larger than the screen is shrunk to fit, minus this
 
 
-class WindowUnavailable(RuntimeError):
+class WindowUnavailableError(RuntimeError):
     """No display, or Tk cannot open it."""
 
 
 def open_root():
-    """A Tk root window, or WindowUnavailable saying why not."""
+    """A Tk root window, or WindowUnavailableError saying why not."""
     if not os.environ.get('DISPLAY'):
-        raise WindowUnavailable('DISPLAY is not set')
+        raise WindowUnavailableError('DISPLAY is not set')
     try:
         import tkinter
         root = tkinter.Tk()
     except Exception as err:  # TclError, ImportError: any reason means "no window"
-        raise WindowUnavailable('Tk cannot open display %s: %s'
+        raise WindowUnavailableError('Tk cannot open display %s: %s'
                                 % (os.environ['DISPLAY'], err)) from None
     root.title(TITLE)
     return root
@@ -61,7 +61,7 @@ def _worker(source, refresh_s, latest, stop):
             if text != last_dot:  # re-render only when the graph changed
                 latest.put(render(dot, 'png'), graph.counts())
                 last_dot = text
-        except (MasterUnreachable, RenderError) as err:
+        except (MasterUnreachableError, RenderError) as err:
             latest.put(None, str(err))
             last_dot = None  # draw again once the master is back
         stop.wait(refresh_s)

@@ -2,7 +2,7 @@
 import xmlrpc.client
 
 import pytest
-from rqt_graph.cli import GraphSource, MasterUnreachable, parse_args
+from rqt_graph.cli import GraphSource, MasterUnreachableError, parse_args
 
 STATE = [[['/chatter', ['/talker']], ['/rosout', ['/talker']]],
          [['/chatter', ['/listener']]], []]
@@ -61,5 +61,5 @@ def test_source_filters_and_groups():
     xmlrpc.client.ProtocolError('localhost:11411', 404, 'Not Found', {}),
 ])
 def test_source_unreachable_names_the_uri(error):
-    with pytest.raises(MasterUnreachable, match='http://localhost:11411/ .ROS_MASTER_URI.'):
+    with pytest.raises(MasterUnreachableError, match='http://localhost:11411/ .ROS_MASTER_URI.'):
         GraphSource(FakeMaster(error)).read()
