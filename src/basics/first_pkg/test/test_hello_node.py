@@ -16,12 +16,12 @@ PKG = 'first_pkg'
 START_DEADLINE_S = 30.0  # rosrun + rospy start-up on a loaded 2-core machine
 LINES_WANTED = 20  # two seconds of lines at 10 Hz: enough to see an order
 EXIT_DEADLINE_S = 15.0
-LINE = re.compile(r'^hello world(\d+)$')  # the slide's "hello world" << count
-SCREEN_LINE = re.compile(r'^\[INFO\] \[[\d.]+\]: (hello world\d+)$')
+LINE = re.compile(r'^hello world (\d+)$')  # as the decks' screens show it
+SCREEN_LINE = re.compile(r'^\[INFO\] \[[\d.]+\]: (hello world \d+)$')
 
 
 def counts(lines):
-    """The counts of the lines that read `hello world<count>`, in order; fails on any other."""
+    """The counts of the lines that read `hello world <count>`, in order; fails on any other."""
     found = []
     for line in lines:
         match = LINE.match(line)

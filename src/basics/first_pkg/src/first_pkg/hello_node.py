@@ -1,10 +1,10 @@
-"""The basics deck's first node (hello): logs "hello world<count>" at 10 Hz."""
+"""The basics deck's first node (hello): logs "hello world <count>" at 10 Hz."""
 import rospy
 
 RATE_HZ = 10  # the slide's ros::Rate loop_rate(10)
-# The slide's ROS_INFO_STREAM("hello world" << count): no space before the count, so the
-# screen reads "hello world0", "hello world1", ... exactly as a student's C++ node prints.
-LINE = 'hello world%d'
+# The slide's code streams "hello world" << count, which would print "hello world0"; the
+# decks' screens (and the talker) read "hello world 0", so the space is kept here.
+LINE = 'hello world %d'
 
 
 class HelloNode:
