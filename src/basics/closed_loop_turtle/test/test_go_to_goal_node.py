@@ -1,0 +1,190 @@
+#!/usr/bin/env python3
+"""Integration test of move_turtle_to_goal.py on the stand-in Pioneer: three goals in a row
+(one behind, one across the heading seam), a new goal taking over, bad goals and poses, bad
+gains."""
+import math
+import os
+import sys
+import threading
+import unittest
+
+import rospkg
+import rospy
+import rostest
+from geometry_msgs.msg import Pose2D, Twist
+
+# turtle_lite's rostest helpers (recorders of topics and /rosout, a process runner), reused.
+sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('turtle_lite'), 'test'))
+from sim_support import (
+    START_DEADLINE_S,
+    LogRecorder,
+    Recorder,
+    Tool,
+    publisher_has_connected,
+    wait_for,
+)
+
+CONTROLLER = '/move_turtle_to_goal'
+GOAL_DEADLINE_S = 90.0  # the longest goal is ~10 m at 1.2 m/s (9 s): margin for a loaded machine
+POSITION_TOL_M = 0.1  # the lab's tolerances...
+HEADING_TOL_RAD = 0.05
+# ...plus one 16 ms tick of the last command before the stop lands: 0.314 m/s -> 5 mm,
+# 0.15 rad/s -> 2.4 mrad.
+TICK_SLACK_M = 0.01
+TICK_SLACK_RAD = 0.005
+SHORT_TURN_RAD = 2 * math.pi - 6.0  # theta 3.0 -> -3.0 the short way; the lab turns 6.0 rad
+
+
+def wrap(angle):
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+class PoseWatch:
+    """The newest Pose2D, the total turn since reset, and the closest approach to a point."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._latest = None
+        self._turned = 0.0
+        self._point = None
+        self._closest = math.inf
+        self._sub = rospy.Subscriber('/pioneer/pose', Pose2D, self._on_pose)
+
+    def _on_pose(self, msg):
+        if not all(math.isfinite(v) for v in (msg.x, msg.y, msg.theta)):
+            return  # the test's own bad pose
+        with self._lock:
+            if self._latest is not None:
+                self._turned += abs(wrap(msg.theta - self._latest.theta))
+            self._latest = msg
+            if self._point is not None:
+                self._closest = min(self._closest, math.hypot(msg.x - self._point[0],
+                                                              msg.y - self._point[1]))
+
+    def latest(self):
+        with self._lock:
+            return self._latest
+
+    def reset(self, point=None):
+        with self._lock:
+            self._turned, self._point, self._closest = 0.0, point, math.inf
+
+    def turned(self):
+        with self._lock:
+            return self._turned
+
+    def closest(self):
+        with self._lock:
+            return self._closest
+
+
+def _same(msg, goal):
+    """Pose2D fields are float64: the goal comes back exactly."""
+    return (msg.x, msg.y, msg.theta) == tuple(float(v) for v in goal)
+
+
+class TestGoToGoal(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.pose = PoseWatch()
+        wait_for(cls.pose.latest, START_DEADLINE_S, 'the first /pioneer/pose')
+        cls.reached = Recorder('/pioneer/goal_reached', Pose2D)
+        cls.commands = Recorder('/pioneer/cmd_vel', Twist)
+        cls.goal_pub = rospy.Publisher('/pioneer/goal', Pose2D, queue_size=10)
+        cls.bad_pose_pub = rospy.Publisher('/pioneer/pose', Pose2D, queue_size=10)
+        wait_for(lambda: publisher_has_connected(CONTROLLER, '/pioneer/cmd_vel'),
+                 START_DEADLINE_S, 'the controller\'s cmd_vel connected to this test')
+        wait_for(lambda: cls.goal_pub.get_num_connections() > 0
+                 and cls.bad_pose_pub.get_num_connections() > 0, START_DEADLINE_S,
+                 'this test\'s goal and pose publishers connected to the controller')
+        cls.logs = LogRecorder(CONTROLLER)
+
+    def _drive_to(self, goal):
+        """Sends the goal and waits until it is reported reached; returns the robot's pose."""
+        start = self.reached.count()
+        self.goal_pub.publish(Pose2D(*goal))
+        wait_for(lambda: any(_same(m, goal) for m in self.reached.messages()[start:]),
+                 GOAL_DEADLINE_S, 'goal %r reported on /pioneer/goal_reached' % (goal,))
+        pose = self.pose.latest()
+        self.assertLess(math.hypot(pose.x - goal[0], pose.y - goal[1]),
+                        POSITION_TOL_M + TICK_SLACK_M, 'position at goal %r: %r' % (goal, pose))
+        self.assertLess(abs(wrap(pose.theta - goal[2])), HEADING_TOL_RAD + TICK_SLACK_RAD,
+                        'heading at goal %r: %r' % (goal, pose))
+        return pose
+
+    def _reach_lines(self):
+        lines = self.logs.lines()
+        return lines.count('Reach position'), lines.count('Reach orientation')
+
+    def test_1_three_goals_in_a_row(self):
+        start = self.pose.latest()
+        # Behind the robot, which starts at the centre heading +x.
+        behind = (2.5, 5.0, 3.0)
+        self.assertGreater(abs(wrap(math.atan2(behind[1] - start.y, behind[0] - start.x)
+                                    - start.theta)), math.pi / 2, 'the first goal is not behind')
+        self._drive_to(behind)
+        # Same place, heading 3.0 -> -3.0: 6.0 rad apart unwrapped, a turn of more than pi for
+        # the lab's law; the short way is 0.28 rad.
+        self.pose.reset()
+        self._drive_to((2.5, 5.0, -3.0))
+        self.assertLess(self.pose.turned(), SHORT_TURN_RAD + 0.1,
+                        'the robot turned the long way round')
+        self._drive_to((8.0, 8.5, 1.0))
+        wait_for(lambda: self._reach_lines() == (3, 3), 15.0,
+                 'three "Reach position" and three "Reach orientation" lines')
+
+    def test_2_new_goal_while_driving_takes_over(self):
+        far = (1.0, 1.0, 0.0)
+        at = self.pose.latest()
+        self.pose.reset(point=far[:2])
+        self.goal_pub.publish(Pose2D(*far))
+        wait_for(lambda: math.hypot(self.pose.latest().x - at.x,
+                                    self.pose.latest().y - at.y) > 1.0,
+                 GOAL_DEADLINE_S, 'the robot 1 m on its way to %r' % (far,))
+        self._drive_to((9.0, 3.0, -1.5))
+        self.assertGreater(self.pose.closest(), 2.0, 'the robot kept driving to the old goal')
+        self.assertFalse([m for m in self.reached.messages() if _same(m, far)],
+                         'the replaced goal was reported reached')
+        self.logs.wait_line('replaces (1.000, 1.000, 0.000)')
+
+    def test_3_bad_goals_are_refused_and_nothing_is_sent(self):
+        here = self.pose.latest()
+        self.commands.clear()
+        def refusals():
+            return [line for line in self.logs.lines() if 'refusing goal' in line]
+        cases = (((math.nan, 5.0, 0.0), 'non-finite'), ((5.0, 5.0, math.inf), 'non-finite'),
+                 ((20.0, 5.0, 0.0), 'outside the world'), ((5.0, -1.0, 0.0), 'outside the world'))
+        for n, (goal, words) in enumerate(cases, start=1):
+            with self.subTest(goal=goal):
+                self.goal_pub.publish(Pose2D(*goal))
+                wait_for(lambda n=n: len(refusals()) >= n, 15.0, 'warning %d of %d' % (n, 4))
+                self.assertIn(words, refusals()[n - 1])
+                self.assertIn('nothing sent', refusals()[n - 1])
+        # A goal where the robot already is: reached at once, with one zero command. Anything
+        # the bad goals had started would show on /pioneer/cmd_vel before it.
+        self._drive_to((here.x, here.y, here.theta))
+        moving = [m for m in self.commands.messages()
+                  if (m.linear.x, m.angular.z) != (0.0, 0.0)]
+        self.assertEqual(moving, [], 'a refused goal moved the robot')
+
+    def test_4_non_finite_pose_is_ignored(self):
+        self.bad_pose_pub.publish(Pose2D(math.nan, 5.0, 0.0))
+        self.logs.wait_line('ignoring pose (x=nan')
+        # The controller still works from the simulator's poses.
+        self._drive_to((6.0, 4.0, 0.5))
+
+    def test_5_bad_gains_are_fatal(self):
+        for args, words in ((['_k_rho:=-1.0'], 'k_rho must be > 0'),
+                            (['_k_alpha:=2.0'], 'k_alpha must be greater than k_rho'),
+                            (['_rate_hz:=fast'], '~rate_hz has value \'fast\'')):
+            with self.subTest(args=args):
+                tool = Tool(['rosrun', 'closed_loop_turtle', 'move_turtle_to_goal.py', *args])
+                self.addCleanup(tool.stop)
+                self.assertEqual(tool.wait_exit(START_DEADLINE_S), 1, tool.output())
+                self.assertTrue(tool.lines_with(words), tool.output())
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_go_to_goal')
+    rostest.rosrun('closed_loop_turtle', 'test_go_to_goal', TestGoToGoal)
