@@ -15,19 +15,20 @@ from geometry_msgs.msg import Pose2D, Twist
 from turtlesim.msg import Pose
 from turtlesim.srv import TeleportAbsolute
 
-# turtle_lite's rostest helpers and its pseudo-terminal teleop driver, reused.
+# turtle_lite's rostest helpers (its pseudo-terminal teleop driver too), reused.
 sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('turtle_lite'), 'test'))
 from sim_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
     LogRecorder,
+    PtyTeleop,
     Recorder,
     wait_for,
 )
-from test_tools_teleop_node import BANNER_LAST, PtyTeleop
 
 INTERFACE = '/pioneer_interface'
 POSE_TOL = 1e-5  # float32 pose fields against float64 values
+BANNER_LAST = "Use arrow keys to move the turtle. 'q' to quit."  # turtle_teleop_key's last line
 
 
 def _twist(lx=0.0, ly=0.0, az=0.0):
@@ -105,7 +106,7 @@ class TestPioneer(unittest.TestCase):
         self.assertEqual([_values(m) for m in got], [(0.25, 0.0, 0.0, 0.0, 0.0, 0.0)])
 
     def test_5_teleop_arrow_keys_drive_at_quarter_speed(self):
-        teleop = PtyTeleop()
+        teleop = PtyTeleop(argv=('rosrun', 'turtlesim', 'turtle_teleop_key'))  # as the lab
         self.addCleanup(teleop.close)
         wait_for(lambda: BANNER_LAST in teleop.output(), START_DEADLINE_S, 'the teleop banner')
         wait_for(lambda: connected('/teleop_turtle', INTERFACE, '/turtle1/cmd_vel'),
