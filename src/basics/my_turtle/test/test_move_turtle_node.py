@@ -11,6 +11,7 @@ import rosnode
 import rospkg
 import rospy
 import rostest
+from geometry_msgs.msg import Twist
 from turtlesim.srv import Spawn, TeleportAbsolute
 
 # turtle_lite's rostest helpers (recorders of topics and /rosout, a process runner), reused.
@@ -20,7 +21,9 @@ from sim_support import (
     WORLD,
     LogRecorder,
     PoseRecorder,
+    Recorder,
     Tool,
+    publisher_has_connected,
     wait_for,
 )
 
@@ -60,6 +63,7 @@ class TestMoveTurtle(unittest.TestCase):
     def test_3_turtle2_by_argv(self):
         rospy.ServiceProxy('/spawn', Spawn)(*TURTLE2_START, 'turtle2')
         poses = PoseRecorder('/turtle2/pose', keep=1)
+        commands = Recorder('/turtle2/cmd_vel', Twist)
         tool = Tool(['rosrun', 'my_turtle', 'move_turtle', 'turtle2', '__name:=move_turtle2'])
         self.addCleanup(tool.stop)
         tool.wait_line('Starting to move forward', START_DEADLINE_S)
@@ -67,9 +71,13 @@ class TestMoveTurtle(unittest.TestCase):
         self.assertRegex(line, POSE_LINE)
         self.assertTrue(line.endswith('y: 2.00'), line)
         self._assert_drives_forward(poses, 'turtle2')
-        # Ctrl-C: the node exits cleanly and the turtle comes to rest.
+        # Ctrl-C: the node sends a zero Twist, exits cleanly, and the turtle comes to rest.
+        wait_for(lambda: publisher_has_connected('/move_turtle2', '/turtle2/cmd_vel'),
+                 START_DEADLINE_S, 'move_turtle2 connected to this test')
         tool.proc.send_signal(signal.SIGINT)
         self.assertEqual(tool.wait_exit(), 0, tool.output())
+        last = commands.wait_latest(lambda m: m.linear.x == 0.0, 'the zero Twist at shutdown')
+        self.assertEqual((last.linear.x, last.angular.z), (0.0, 0.0))
         poses.wait_latest(lambda p: p.linear_velocity == 0.0, 'turtle2 at rest after Ctrl-C')
 
     def test_4_wall_gets_the_simulator_warning_not_a_crash(self):
