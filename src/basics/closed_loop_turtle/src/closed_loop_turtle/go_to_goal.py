@@ -70,6 +70,15 @@ def _check_number(name, value):
         raise ValueError('%s must be finite, got %r' % (name, value))
 
 
+def _check_positive_fields(obj):
+    """Every field of the dataclass obj a finite number > 0 (ValueError naming it)."""
+    for name in obj.__dataclass_fields__:
+        value = getattr(obj, name)
+        _check_number(name, value)
+        if value <= 0.0:
+            raise ValueError('%s must be > 0, got %r' % (name, value))
+
+
 @dataclass(frozen=True)
 class Gains:
     """k_rho, k_alpha, k_beta; the lab's stability conditions are checked (ValueError)."""
@@ -98,11 +107,7 @@ class Tolerances:
     heading_rad: float = DEFAULT_HEADING_TOLERANCE_RAD
 
     def __post_init__(self):
-        for name in ('position_m', 'heading_rad'):
-            value = getattr(self, name)
-            _check_number(name, value)
-            if value <= 0.0:
-                raise ValueError('%s must be > 0, got %r' % (name, value))
+        _check_positive_fields(self)
 
 
 @dataclass(frozen=True)
@@ -113,11 +118,7 @@ class Limits:
     max_angular_radps: float = DEFAULT_MAX_ANGULAR_RADPS
 
     def __post_init__(self):
-        for name in ('max_linear_mps', 'max_angular_radps'):
-            value = getattr(self, name)
-            _check_number(name, value)
-            if value <= 0.0:
-                raise ValueError('%s must be > 0, got %r' % (name, value))
+        _check_positive_fields(self)
 
 
 class Phase(Enum):
