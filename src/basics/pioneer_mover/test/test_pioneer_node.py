@@ -71,6 +71,12 @@ class TestPioneer(unittest.TestCase):
         wait_for(lambda: connected(INTERFACE, rospy.get_name(), '/pioneer/cmd_vel'),
                  START_DEADLINE_S, 'pioneer_interface connected to this test')
 
+    def _commands_after_clear(self, n, what):
+        """The first n commands on /pioneer/cmd_vel since the last clear() (which comes before
+        the publish, so a fast answer cannot be missed)."""
+        wait_for(lambda: self.commands.count() >= n, EVENT_DEADLINE_S, what)
+        return self.commands.messages()[:n]
+
     def test_1_graph_is_the_labs(self):
         types = dict(rosgraph.Master(rospy.get_name()).getTopicTypes())
         self.assertEqual(types['/pioneer/pose'], 'geometry_msgs/Pose2D')
@@ -90,7 +96,7 @@ class TestPioneer(unittest.TestCase):
     def test_3_command_divided_by_four(self):
         self.commands.clear()
         self.teleop_cmd.publish(_twist(2.0, 0.4, -1.2))
-        got = self.commands.wait_count(1, 'the command on /pioneer/cmd_vel')[0]
+        got = self._commands_after_clear(1, 'the command on /pioneer/cmd_vel')[0]
         self.assertEqual(_values(got), (0.5, 0.1, 0.0, 0.0, 0.0, -0.3))
         self.logs.wait_line('The robot velocity is (2.0, -1.2)')
         self.turtle.wait_latest(lambda p: abs(p.angular_velocity + 0.3) < POSE_TOL,
@@ -102,7 +108,7 @@ class TestPioneer(unittest.TestCase):
         self.logs.wait_line('not forwarding')
         # A good command after the bad one: the first thing on /pioneer/cmd_vel must be it.
         self.teleop_cmd.publish(_twist(1.0))
-        got = self.commands.wait_count(1, 'the good command after the NaN one')
+        got = self._commands_after_clear(1, 'the good command after the NaN one')
         self.assertEqual([_values(m) for m in got], [(0.25, 0.0, 0.0, 0.0, 0.0, 0.0)])
 
     def test_5_teleop_arrow_keys_drive_at_quarter_speed(self):
@@ -114,14 +120,14 @@ class TestPioneer(unittest.TestCase):
         self.commands.clear()
         start = self.pose2d.latest()
         teleop.send(b'\x1b[A')  # up arrow: 2.0 m/s from the teleop
-        got = self.commands.wait_count(1, 'the up-arrow command on /pioneer/cmd_vel')
+        got = self._commands_after_clear(1, 'the up-arrow command on /pioneer/cmd_vel')
         self.assertEqual(_values(got[0]), (0.5, 0.0, 0.0, 0.0, 0.0, 0.0))
         self.turtle.wait_latest(lambda p: p.linear_velocity == 0.5, 'the Pioneer at 0.5 m/s')
         self.pose2d.wait_latest(lambda p: math.hypot(p.x - start.x, p.y - start.y) > 0.1,
                                 'the Pioneer 0.1 m from where it was')
         teleop.send(b'\x1b[D')  # left arrow: 2.0 rad/s from the teleop
-        got = self.commands.wait_count(1, 'the left-arrow command on /pioneer/cmd_vel')
-        self.assertEqual(_values(got[-1]), (0.0, 0.0, 0.0, 0.0, 0.0, 0.5))
+        got = self._commands_after_clear(2, 'the left-arrow command on /pioneer/cmd_vel')
+        self.assertEqual(_values(got[1]), (0.0, 0.0, 0.0, 0.0, 0.0, 0.5))
         self.logs.wait_line('The robot velocity is (0.0, 2.0)')
         teleop.send(b'q')
         self.assertEqual(teleop.proc.wait(timeout=EVENT_DEADLINE_S), 0)
