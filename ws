@@ -28,6 +28,8 @@ usage: ./ws COMMAND [ARGS]
   integration [F..]  rostest every test/*.test of every package (or just the files F)
   bench [NAME..]     run the benchmarks under bench/ (all, or bench/NAME.py)
   shell              a bash with the workspace sourced, for running things by hand
+  hosts CMD [ARGS]   hosts on this machine as network namespaces (root): up N | down | status |
+                     exec I CMD.. | link I up/down | netem ARGS/off (src/multihost/README.md)
 EOF
 }
 
@@ -175,6 +177,11 @@ cmd_bench() {
   done
 }
 
+cmd_hosts() {
+  source_devel
+  exec rosrun multihost hosts "$@"
+}
+
 cmd_shell() {
   source_devel
   exec bash --rcfile <(echo "source ~/.bashrc 2>/dev/null; export PATH=\"$PATH\"; source \"$ROOT/$DEVEL_DIR/setup.bash\"; PS1=\"(ws) \$PS1\"")
@@ -184,7 +191,7 @@ command=${1:-}
 [[ -n $command ]] || { usage; exit 2; }
 shift
 case $command in
-  demo|test|deps|build|lint|unit|integration|summary|bench|shell) "cmd_$command" "$@" ;;
+  demo|test|deps|build|lint|unit|integration|summary|bench|shell|hosts) "cmd_$command" "$@" ;;
   -h|--help|help) usage ;;
   *) echo "ws: unknown command '$command'" >&2; usage >&2; exit 2 ;;
 esac

@@ -1,0 +1,1 @@
+"""A robot team across hosts: network namespaces as hosts, the ROS network check."""
