@@ -1,0 +1,168 @@
+"""Run a team's processes on the hosts of multihost.hosts and watch it (tests and bench).
+
+Team starts commands inside host namespaces, each in its own process group with its log in
+a file, and stops them all at close (also at interpreter exit). Probe reads the JSON events
+of a team_probe_node running on a host.
+"""
+import atexit
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+from multihost import hosts as hosts_mod
+
+STOP_WAIT_S = 20.0  # roslaunch gives its nodes 15 s after SIGINT before escalating
+
+
+class Team:
+    """Processes on hosts, by name; close() stops every one (SIGINT, then SIGKILL)."""
+
+    def __init__(self, hosts, log_dir):
+        self.hosts = hosts
+        self.log_dir = str(log_dir)
+        self.procs = {}
+        os.makedirs(self.log_dir, exist_ok=True)
+        atexit.register(self.close)
+
+    def env(self, i, extra=None):
+        env = hosts_mod.host_env(i)
+        env['ROS_HOME'] = os.path.join(self.log_dir, 'ros_home')
+        env['PYTHONUNBUFFERED'] = '1'
+        env.update(extra or {})
+        return {k: v for k, v in env.items() if v is not None}
+
+    def start(self, name, i, command, extra_env=None, stdout=None):
+        """Start command (argv list) on host i as `name`; env values None unset a variable."""
+        if name in self.procs:
+            raise ValueError('a process named %s already runs' % name)
+        log = open(self.log_path(name), 'w', encoding='utf-8')  # noqa: SIM115 (kept open)
+        proc = subprocess.Popen(self.hosts.argv(i, command), env=self.env(i, extra_env),
+                                stdout=stdout or log, stderr=log, start_new_session=True,
+                                text=True)
+        proc.log_file = log
+        self.procs[name] = proc
+        return proc
+
+    def log_path(self, name):
+        return os.path.join(self.log_dir, '%s.log' % name)
+
+    def tail(self, name, lines=30):
+        try:
+            with open(self.log_path(name), encoding='utf-8', errors='replace') as f:
+                return ''.join(f.readlines()[-lines:])
+        except OSError:
+            return ''
+
+    def exited(self, names=None):
+        """{name: exit status} of the processes (of names) that are no longer running."""
+        return {n: p.poll() for n, p in self.procs.items()
+                if (names is None or n in names) and p.poll() is not None}
+
+    def run(self, i, command, extra_env=None, timeout_s=30.0):
+        """Run command on host i to completion; (status, output)."""
+        result = subprocess.run(self.hosts.argv(i, command), env=self.env(i, extra_env),
+                                capture_output=True, text=True, timeout=timeout_s, check=False)
+        return result.returncode, result.stdout + result.stderr
+
+    def stop(self, names=None):
+        """Stop the processes (all, or names): SIGINT to each group, SIGKILL after a while."""
+        procs = [(n, p) for n, p in self.procs.items() if names is None or n in names]
+        for _name, proc in procs:
+            _signal_group(proc, signal.SIGINT)
+        deadline = time.monotonic() + STOP_WAIT_S
+        for _name, proc in procs:
+            try:
+                proc.wait(timeout=max(0.1, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                pass
+            _signal_group(proc, signal.SIGKILL)
+            proc.wait()
+            proc.log_file.close()
+        for name, _proc in procs:
+            del self.procs[name]
+
+    def close(self):
+        self.stop()
+
+
+def _signal_group(proc, sig):
+    try:
+        os.killpg(proc.pid, sig)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+class Probe:
+    """The events of a team_probe_node started by Team.start_probe, as they arrive."""
+
+    def __init__(self, team, name, i, args):
+        self._lock = threading.Lock()
+        self._events = []
+        self.name = name
+        command = [sys.executable, '-m', 'multihost.team_probe_node', *args]
+        self.proc = team.start(name, i, command, stdout=subprocess.PIPE)
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            try:
+                event = json.loads(line)
+            except ValueError:
+                continue
+            with self._lock:
+                self._events.append(event)
+
+    def events(self, kind, robot=None, since=None):
+        with self._lock:
+            return [e for e in self._events if e['e'] == kind
+                    and (robot is None or e.get('r') == robot)
+                    and (since is None or e.get('t', 0.0) >= since)]
+
+    def ready(self):
+        return bool(self.events('ready'))
+
+    def go_time(self):
+        """Receive time of the first GO, or None."""
+        gos = self.events('go')
+        return gos[0]['t'] if gos else None
+
+    def first_move(self, robot):
+        """Receive time of robot's first non-zero command, or None."""
+        moves = [e['t'] for e in self.events('cmd', robot) if e['v'] != 0.0]
+        return moves[0] if moves else None
+
+    def last_pose(self, robot):
+        poses = self.events('pose', robot)
+        return poses[-1] if poses else None
+
+    def last_change(self, robot, eps_m=1e-4):
+        """Receive time of the last pose that differed from the one before it, or None."""
+        poses = self.events('pose', robot)
+        for before, after in zip(reversed(poses[:-1]), reversed(poses[1:]), strict=True):
+            if math.hypot(after['x'] - before['x'], after['y'] - before['y']) > eps_m:
+                return after['t']
+        return None
+
+    def moving(self, robot, window_s=0.5):
+        """True when robot's pose changed within the last window_s seconds."""
+        changed = self.last_change(robot)
+        return changed is not None and time.time() - changed < window_s
+
+    def still(self, robot, window_s=0.5):
+        """True when robot has poses but they did not change for window_s seconds."""
+        return self.last_pose(robot) is not None and not self.moving(robot, window_s)
+
+    def gap(self, leader, follower):
+        """Distance between the latest poses of two robots, or None."""
+        a, b = self.last_pose(leader), self.last_pose(follower)
+        return None if a is None or b is None else math.hypot(a['x'] - b['x'], a['y'] - b['y'])
+
+    def warnings(self, since=None):
+        return [(e['node'], e['msg']) for e in self.events('log', since=since)]
+

@@ -1,0 +1,61 @@
+"""The lessons split over hosts: which command runs where, and the start sequence.
+
+Per-host launch instead of roslaunch's <machine> tag: <machine> starts remote nodes over ssh
+(keys, known_hosts, and an env-loader script on every robot), which the namespaces here, and
+many lab networks, do not have; a roslaunch per host needs only ROS_MASTER_URI and ROS_IP.
+"""
+from turtle_lite.testing import wait_for
+
+from multihost.harness import Probe
+
+MULTI_SYNC_ROBOTS = ['robot_0', 'robot_1', 'robot_2', 'robot_3']
+CONVOY_ROBOTS = ['robot1', 'robot2', 'robot3']
+# The lesson's layout across three hosts; ONE_HOST puts every role on host 1.
+MULTI_SYNC_HOSTS = {'sim': 1, 'monitor': 1, 'robots_01': 2, 'robots_23': 3}
+CONVOY_HOSTS = {'sim': 1, 'convoy_node': 2, 'convoy2_node': 3}
+STARTUP_S = 60.0  # master, simulator and nodes starting on a loaded 2-core machine
+
+
+def one_host(layout):
+    return dict.fromkeys(layout, 1)
+
+
+def start_master(team, robots, status=False, pose_period_s=0.1):
+    """roscore on host 1 and a probe there; returns the probe once the master answers it."""
+    team.start('roscore', 1, ['roscore', '-p', '11311'])
+    args = ['--robots', *robots, '--pose-period', str(pose_period_s)]
+    probe = Probe(team, 'probe', 1, args + (['--status'] if status else []))
+    wait_for(probe.ready, STARTUP_S, 'the master on host 1 to answer the probe (%s)'
+             % team.log_path('roscore'))
+    return probe
+
+
+def start_multi_sync(team, layout=None):
+    """The lesson: simulator, robots 0-1, robots 2-3, then (once all are ready) the monitor."""
+    layout = layout or MULTI_SYNC_HOSTS
+    probe = start_master(team, MULTI_SYNC_ROBOTS, status=True)
+    team.start('sim', layout['sim'],
+               ['roslaunch', 'multi_sync', 'multi_sync.launch', 'robots:=false'])
+    team.start('robots_01', layout['robots_01'],
+               ['roslaunch', 'multi_sync', 'robots.launch', 'id:=0', 'team_size:=2'])
+    team.start('robots_23', layout['robots_23'],
+               ['roslaunch', 'multi_sync', 'robots.launch', 'id:=2', 'team_size:=4'])
+    wait_for(lambda: {e['id'] for e in probe.events('status')} >= {0, 1, 2, 3}, STARTUP_S,
+             'ready reports of robots 0-3 on team_status')
+    team.start('monitor', layout['monitor'], ['rosrun', 'multi_sync', 'monitor', '4'])
+    return probe
+
+
+def start_convoy(team, layout=None, pose_period_s=0.1):
+    """convoy.launch's simulator and autopilot on host 1, one convoy_node per follower host."""
+    layout = layout or CONVOY_HOSTS
+    probe = start_master(team, CONVOY_ROBOTS, pose_period_s=pose_period_s)
+    team.start('sim', layout['sim'], ['roslaunch', 'convoy', 'convoy.launch', 'followers:=false',
+                                      'autopilot:=true'])
+    team.start('convoy_node', layout['convoy_node'],
+               ['roslaunch', 'multihost', 'convoy_follower.launch', 'name:=convoy_node',
+                'leader:=robot1', 'follower:=robot2'])
+    team.start('convoy2_node', layout['convoy2_node'],
+               ['roslaunch', 'multihost', 'convoy_follower.launch', 'name:=convoy2_node',
+                'leader:=robot2', 'follower:=robot3'])
+    return probe
