@@ -26,6 +26,7 @@ usage: ./ws COMMAND [ARGS]
   lint               catkin_lint, ruff, hadolint, actionlint
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
   integration [F..]  rostest every test/*.test of every package (or just the files F)
+  multihost [ARGS]   the multi-host tests (test/hosts/, pytest; root and ip netns, else skipped)
   bench [NAME..]     run the benchmarks under bench/ (all, or bench/NAME.py)
   shell              a bash with the workspace sourced, for running things by hand
   hosts CMD [ARGS]   hosts on this machine as network namespaces (root): up N | down | status |
@@ -100,6 +101,8 @@ package_dirs() { find src -name package.xml -not -path '*/.*' -printf '%h\n' | s
 # Every package's rostest files, and its unit-test folders.
 integration_files() { local d; for d in $(package_dirs); do compgen -G "$d/test/*.test" || true; done; }
 unit_dirs() { local d; for d in $(package_dirs); do [[ ! -d $d/test/unit ]] || echo "$d/test/unit"; done; }
+# Every package's multi-host test folder (test/hosts: pytest on network namespaces).
+hosts_dirs() { local d; for d in $(package_dirs); do [[ ! -d $d/test/hosts ]] || echo "$d/test/hosts"; done; }
 
 cmd_unit() {
   source_devel
@@ -132,6 +135,20 @@ cmd_integration() {
   return $failed
 }
 
+# The lessons across hosts (network namespaces): pytest, as they run one master per test, on
+# hosts rostest cannot start. Without root or `ip netns` each test reports itself skipped.
+cmd_multihost() {
+  source_devel
+  mkdir -p "$RESULTS_DIR"
+  # Leftovers of a run that was killed outright (SIGKILL skips its clean-up).
+  if [[ $(id -u) == 0 ]] && command -v ip >/dev/null; then rosrun multihost hosts down --stale || true; fi
+  local status=0 dirs
+  mapfile -t dirs < <(hosts_dirs)
+  timeout --kill-after=10 1200 /usr/bin/python3 -m pytest -q -p no:cacheprovider \
+    --junitxml="$RESULTS_DIR/multihost.xml" -rs "${dirs[@]}" "$@" || status=$?
+  ((status == 0 || status == 5))
+}
+
 # src/.../<pkg>/test/<name>.test -> <pkg>
 package_of() { basename "$(dirname "$(dirname "$1")")"; }
 
@@ -150,7 +167,8 @@ cmd_test() {
   cmd_lint || lint_ok=0
   cmd_unit || true
   cmd_integration || true
-  local expected=(--junit "$RESULTS_DIR/unit.xml") f
+  cmd_multihost || true
+  local expected=(--junit "$RESULTS_DIR/unit.xml" --junit "$RESULTS_DIR/multihost.xml") f
   for f in $(integration_files); do
     expected+=(--rostest "$(integration_results_dir "$f")")
   done
@@ -191,7 +209,7 @@ command=${1:-}
 [[ -n $command ]] || { usage; exit 2; }
 shift
 case $command in
-  demo|test|deps|build|lint|unit|integration|summary|bench|shell|hosts) "cmd_$command" "$@" ;;
+  demo|test|deps|build|lint|unit|integration|multihost|summary|bench|shell|hosts) "cmd_$command" "$@" ;;
   -h|--help|help) usage ;;
   *) echo "ws: unknown command '$command'" >&2; usage >&2; exit 2 ;;
 esac

@@ -19,6 +19,7 @@ class Tally:
     def __init__(self):
         self.passed = self.failed = self.skipped = 0
         self.problems = []
+        self.skip_reasons = {}  # (label, reason) -> count, printed so a skip is never silent
 
     def counts(self):
         return self.passed, self.failed, self.skipped
@@ -37,6 +38,8 @@ class Tally:
                 continue
             elif case.find('skipped') is not None:
                 self.skipped += 1
+                key = (label, case.find('skipped').get('message', '') or 'no reason given')
+                self.skip_reasons[key] = self.skip_reasons.get(key, 0) + 1
             else:
                 self.passed += 1
 
@@ -91,6 +94,8 @@ def main():
     for step in args.failed_step:
         tally.fail('step %s failed' % step)
 
+    for (label, reason), count in sorted(tally.skip_reasons.items()):
+        print('SKIPPED %s: %d test%s: %s' % (label, count, '' if count == 1 else 's', reason))
     for problem in tally.problems:
         print('FAILED ' + problem)
     if tally.passed + tally.failed == 0:

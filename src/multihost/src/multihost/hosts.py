@@ -226,3 +226,7 @@ def run(argv=None):
 def main(argv=None):
     """./ws hosts COMMAND ... (rosrun multihost hosts)."""
     sys.exit(run(argv))
+
+
+if __name__ == '__main__':
+    main()

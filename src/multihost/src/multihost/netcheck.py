@@ -113,6 +113,8 @@ def own_findings(host, source, resolved, local_addresses, master_remote):
         return [Finding(False, 'ROS_IP=%s is not an address of this host (its addresses: %s)'
                         % (host, ', '.join(team_addresses(local_addresses)) or 'none'), fix)]
     own = set(local_addresses)
+    if host in own:
+        return [Finding(True, '%s is an address of this host' % shown)]
     if not any(a in own for a in resolved):
         return [Finding(False, '%s resolves here to %s, not to an address of this host'
                         % (shown, ', '.join(resolved)), fix)]
@@ -136,7 +138,7 @@ def master_finding(uri, resolved, error, nodes):
         return Finding(False, 'master %s not reachable: %s' % (uri, error),
                        'check that %s, and that ROS_MASTER_URI names that host '
                        '(export ROS_MASTER_URI=http://<its address>:%d)' % (local, port))
-    return Finding(True, 'master %s answers (%d nodes registered)' % (uri, nodes))
+    return Finding(True, 'master %s answers (nodes registered: %d)' % (uri, nodes))
 
 
 def node_finding(node, uri, resolved, error):

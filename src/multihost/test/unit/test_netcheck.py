@@ -58,7 +58,9 @@ def test_parse_master_uri_rejects(uri):
 
 @pytest.mark.parametrize(('host', 'source', 'resolved', 'remote', 'ok', 'what', 'fix'), [
     # the team's good case: an address of this host
-    ('10.77.0.2', 'ROS_IP', ['10.77.0.2'], True, True, 'ROS_IP=10.77.0.2 resolves', ''),
+    ('10.77.0.2', 'ROS_IP', ['10.77.0.2'], True, True, 'ROS_IP=10.77.0.2 is an address of this', ''),
+    # a hostname that resolves to this host
+    ('laptop', 'hostname', ['10.77.0.2'], False, True, 'hostname laptop resolves here to 10.77.0.2', ''),
     # wrong ROS_IP (another host's, or a typo)
     ('10.77.0.9', 'ROS_IP', ['10.77.0.9'], True, False,
      'ROS_IP=10.77.0.9 is not an address of this host (its addresses: 10.77.0.2', 'export ROS_IP=10.77.0.2'),
@@ -88,7 +90,7 @@ def test_own_hostname_reminds_that_others_must_resolve_it():
 
 
 @pytest.mark.parametrize(('uri', 'resolved', 'error', 'ok', 'what', 'fix'), [
-    ('http://host1:11311', ['10.77.0.1'], None, True, 'answers (5 nodes', ''),
+    ('http://host1:11311', ['10.77.0.1'], None, True, 'answers (nodes registered: 5)', ''),
     ('http://nohost:11311', None, None, False, "'nohost'", 'export ROS_MASTER_URI=http://<address'),
     ('http://host1:11311', ['10.77.0.1'], 'Connection refused', False,
      'not reachable: Connection refused', 'roscore runs on host1'),

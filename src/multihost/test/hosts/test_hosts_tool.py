@@ -1,0 +1,57 @@
+"""./ws hosts: the namespaces it makes, that they reach each other, and that nothing stays."""
+import os
+import subprocess
+import sys
+
+from multihost import hosts, netns
+
+HOSTS = [sys.executable, '-m', 'multihost.hosts']
+
+
+def _ws_hosts(*args, user=None):
+    prefix = ['setpriv', '--reuid=%d' % user, '--regid=%d' % user, '--clear-groups'] if user else []
+    env = dict(os.environ, ROS_HOME='/tmp')
+    return subprocess.run([*prefix, *HOSTS, *args], capture_output=True, text=True, env=env,
+                          timeout=60, check=False)
+
+
+def test_hosts_reach_each_other_by_name(team):
+    status, out = team.run(2, [sys.executable, '-c', (
+        'import socket; s = socket.socket(); s.bind(("10.77.0.2", 0)); s.listen();'
+        'print(socket.gethostbyname("host3"), s.getsockname()[1])')])
+    assert status == 0 and out.split()[0] == '10.77.0.3', out
+    status, out = team.run(3, ['cat', '/etc/hosts'])
+    assert '10.77.0.1\thost1' in out, out
+
+
+def test_up_status_down_leave_nothing(hosts3):
+    prefix = 'wsht%d' % os.getpid()
+    made = _ws_hosts('--prefix', prefix, 'up', '2')
+    try:
+        assert made.returncode == 0, made.stderr
+        assert 'host2: namespace %s-h2, ROS_IP=10.77.0.2' % prefix in made.stdout
+        assert sorted(netns.ours(prefix, hosts.list_namespaces())) == [
+            prefix + '-h1', prefix + '-h2', prefix + '-sw']
+        again = _ws_hosts('--prefix', prefix, 'up', '2')
+        assert again.returncode == 1 and 'down first' in again.stderr
+        status = _ws_hosts('--prefix', prefix, 'status')
+        assert '%s-sw: switch, ports: p1 UP, p2 UP' % prefix in status.stdout, status.stdout
+        missing = _ws_hosts('--prefix', prefix, 'exec', '3', 'true')
+        assert missing.returncode == 1 and 'no host 3' in missing.stderr
+    finally:
+        gone = _ws_hosts('--prefix', prefix, 'down')
+    assert gone.returncode == 0, gone.stderr
+    assert netns.ours(prefix, hosts.list_namespaces()) == []
+    assert not os.path.exists(os.path.join(netns.NETNS_ETC, prefix + '-h1'))
+
+
+def test_not_root_says_so_in_one_line(hosts3):
+    result = _ws_hosts('up', '2', user=65534)
+    assert result.returncode == 1
+    assert result.stderr.strip().splitlines()[-1] == (
+        'hosts: cannot run: network namespaces need root (run as root, or with sudo)')
+
+
+def test_bad_count_is_refused(hosts3):
+    result = _ws_hosts('--prefix', 'wshbad%d' % os.getpid(), 'up', '0')
+    assert result.returncode == 1 and 'expected an integer from 1 to 50' in result.stderr
