@@ -21,7 +21,7 @@ from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 
 from multi_sync.msg import RobotStatus
-from turtle_lite.msg import Pose
+from turtlesim.msg import Pose
 
 
 class TeamProbe:
