@@ -127,10 +127,14 @@ class Probe:
     def ready(self):
         return bool(self.events('ready'))
 
-    def go_time(self):
-        """Receive time of the first GO, or None."""
+    def go_stamp(self):
+        """The first GO's header stamp (when the monitor sent it), or None.
+
+        Not when the probe received it: the monitor sends GO to its subscribers one after
+        the other, so a robot may act on GO before the probe hears it.
+        """
         gos = self.events('go')
-        return gos[0]['t'] if gos else None
+        return gos[0]['stamp'] if gos else None
 
     def first_move(self, robot):
         """Receive time of robot's first non-zero command, or None."""

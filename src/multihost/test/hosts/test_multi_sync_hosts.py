@@ -23,7 +23,7 @@ def _moved_m(probe, robot):
 
 
 def _all_moving_after_go(team, probe):
-    go = wait_for(probe.go_time, GO_S, 'GO from the monitor (%s)' % team.log_path('monitor'))
+    go = wait_for(probe.go_stamp, GO_S, 'GO from the monitor (%s)' % team.log_path('monitor'))
     firsts = {r: wait_for(lambda r=r: probe.first_move(r), MOVE_S, 'first command of ' + r)
               for r in MULTI_SYNC_ROBOTS}
     for robot in MULTI_SYNC_ROBOTS:
