@@ -8,7 +8,8 @@ each layout (every role on host 1; the lesson's three hosts; three hosts with
     ("first move command X ms after GO": GO's transit to its host plus its reaction), and as
     seen on host 1 (the command's trip back included);
   * convoy, CONVOY_S seconds with the autopilot: follower pose -> its command, seen on host 1
-    (pose out to the follower's host, convoy_node, command back), per follower.
+    (pose out to the follower's host, convoy_node, command back), per follower, each
+    command paired with the follower pose nearest in time (valid below 8 ms).
 Prints a markdown table. Without root or `ip netns` it says why and exits 0.
 """
 import os
@@ -17,8 +18,6 @@ import statistics
 import sys
 import tempfile
 import time
-
-from turtle_lite.testing import wait_for
 
 from multihost.harness import Team
 from multihost.hosts import Hosts, HostsError, unavailable_reason
@@ -30,6 +29,7 @@ from multihost.lessons import (
     start_convoy,
     start_multi_sync,
 )
+from turtle_lite.testing import wait_for
 
 RUNS = 3
 CONVOY_S = 20.0   # of pose/command pairs after the followers start, ~1250 per follower
@@ -73,10 +73,12 @@ def convoy_run(hosts, layout, log_dir):
             for cmd in probe.events('cmd', follower, since=start):
                 while k + 1 < len(poses) and poses[k + 1] <= cmd['t']:
                     k += 1
-                # The latest pose before the command caused it (valid while the latency is
-                # below the 16 ms pose period).
-                if poses and poses[k] <= cmd['t']:
-                    latencies.append(1000.0 * (cmd['t'] - poses[k]))
+                # The pose nearest in time caused the command (valid while the latency is
+                # below half the 16 ms pose period). The probe hears the pose in another
+                # thread than the command, so it can hear the command first: that counts 0.
+                near = min(poses[k:k + 2], key=lambda t, c=cmd['t']: abs(c - t), default=None)
+                if near is not None:
+                    latencies.append(max(0.0, 1000.0 * (cmd['t'] - near)))
             result[follower] = latencies
         return result
     finally:
@@ -84,13 +86,14 @@ def convoy_run(hosts, layout, log_dir):
 
 
 def stats(values, p95=False):
+    """'median / max', or 'median / p95 / max' (ms)."""
     if not values:
         return '-'
     ordered = sorted(values)
-    mid = '%.1f' % statistics.median(ordered)
+    cells = [statistics.median(ordered)]
     if p95:
-        mid += ' / %.1f' % ordered[min(len(ordered) - 1, int(0.95 * len(ordered)))]
-    return '%s / %.1f' % (mid, ordered[-1])
+        cells.append(ordered[min(len(ordered) - 1, int(0.95 * len(ordered)))])
+    return ' / '.join('%.1f' % v for v in [*cells, ordered[-1]])
 
 
 def main():

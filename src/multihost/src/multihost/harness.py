@@ -5,6 +5,7 @@ a file, and stops them all at close (also at interpreter exit). Probe reads the 
 of a team_probe_node running on a host.
 """
 import atexit
+import contextlib
 import json
 import math
 import os
@@ -70,31 +71,34 @@ class Team:
         return result.returncode, result.stdout + result.stderr
 
     def stop(self, names=None):
-        """Stop the processes (all, or names): SIGINT to each group, SIGKILL after a while."""
+        """Stop the processes (all, or names): SIGINT to each group, SIGKILL after a while.
+
+        Returns the names of those that had not ended STOP_WAIT_S after SIGINT (hung).
+        """
         procs = [(n, p) for n, p in self.procs.items() if names is None or n in names]
         for _name, proc in procs:
             _signal_group(proc, signal.SIGINT)
         deadline = time.monotonic() + STOP_WAIT_S
-        for _name, proc in procs:
-            try:
+        hung = []
+        for name, proc in procs:
+            with contextlib.suppress(subprocess.TimeoutExpired):
                 proc.wait(timeout=max(0.1, deadline - time.monotonic()))
-            except subprocess.TimeoutExpired:
-                pass
-            _signal_group(proc, signal.SIGKILL)
+            if proc.poll() is None:
+                hung.append(name)
+            _signal_group(proc, signal.SIGKILL)  # also whatever the group left behind
             proc.wait()
             proc.log_file.close()
         for name, _proc in procs:
             del self.procs[name]
+        return hung
 
     def close(self):
         self.stop()
 
 
 def _signal_group(proc, sig):
-    try:
+    with contextlib.suppress(ProcessLookupError, PermissionError):
         os.killpg(proc.pid, sig)
-    except (ProcessLookupError, PermissionError):
-        pass
 
 
 class Probe:

@@ -78,8 +78,9 @@ def check(env, hosts, timeout_s):
     try:
         master_host, master_port = netcheck.parse_master_uri(uri)
     except ValueError as err:
-        return header, [netcheck.Finding(False, str(err), 'export ROS_MASTER_URI=http://'
-                                         '<host running roscore>:%d' % netcheck.MASTER_DEFAULT_PORT)]
+        fix = ('export ROS_MASTER_URI=http://<host running roscore>:%d'
+               % netcheck.MASTER_DEFAULT_PORT)
+        return header, [netcheck.Finding(False, str(err), fix)]
     master_resolved = resolve(master_host)
     master_remote = not (netcheck.is_loopback(master_host) or (
         master_resolved is not None and set(master_resolved) & set(addrs)))

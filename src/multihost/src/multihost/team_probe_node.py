@@ -19,9 +19,9 @@ import time
 import rospy
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
+from turtlesim.msg import Pose
 
 from multi_sync.msg import RobotStatus
-from turtlesim.msg import Pose
 
 
 class TeamProbe:

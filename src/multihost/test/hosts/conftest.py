@@ -7,7 +7,6 @@ import os
 import signal
 
 import pytest
-
 from multihost.harness import Team
 from multihost.hosts import Hosts, unavailable_reason
 

@@ -2,9 +2,8 @@
 robot2) on host 2, convoy2_node (robot2 -> robot3) on host 3. Seen from host 1 by a probe."""
 import time
 
-from turtle_lite.testing import wait_for
-
 from multihost.lessons import start_convoy
+from turtle_lite.testing import wait_for
 
 CAUGHT_UP_M = 2.0   # the course's 1.5 m tolerance plus half a metre (as convoy's own tests)
 STATED_GAP_M = 2.5  # convoy's stated gap once caught up with the autopilot's 0.5 m/s
@@ -25,6 +24,7 @@ def test_followers_on_their_own_hosts_catch_up(team):
     probe = start_convoy(team)
     _caught_up(probe)
     assert not team.exited(), 'processes ended: %s' % team.exited()
+    assert not team.stop(), 'processes ignored Ctrl-C'
 
 
 def test_follower_host_cut_and_restored(team, hosts3):
@@ -52,3 +52,4 @@ def test_follower_host_cut_and_restored(team, hosts3):
              'robot3 to catch up with robot2 again')
     print('cut -> robot3 stopped: %.0f ms' % stopped_ms)
     assert not team.exited(), 'processes ended: %s' % team.exited()
+    assert not team.stop(), 'processes ignored Ctrl-C'

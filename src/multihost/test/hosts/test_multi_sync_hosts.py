@@ -4,9 +4,8 @@ Everything is seen from host 1 by a probe (poses, commands, GO, warnings), as a 
 """
 import time
 
-from turtle_lite.testing import wait_for
-
 from multihost.lessons import MULTI_SYNC_ROBOTS, start_multi_sync
+from turtle_lite.testing import wait_for
 
 GO_S = 30.0        # monitor start -> GO, with the monitor's own start-up
 MOVE_S = 10.0      # GO -> every robot's first command, seen on host 1
@@ -41,6 +40,7 @@ def test_every_robot_moves_after_go_across_hosts(team):
     last_ms = 1000.0 * (max(firsts.values()) - go)
     print('GO -> last robot first command, seen on host 1: %.1f ms' % last_ms)
     assert not team.exited(), 'processes ended: %s' % team.exited()
+    assert not team.stop(), 'processes ignored Ctrl-C'
 
 
 def test_robot_host_cut_and_restored(team, hosts3):
@@ -73,3 +73,4 @@ def test_robot_host_cut_and_restored(team, hosts3):
     print('cut -> robots 2-3 stopped: %.0f ms; restore -> moving again within %.1f s'
           % (stopped_ms, rejoin_s))
     assert not team.exited(), 'processes ended: %s' % team.exited()
+    assert not team.stop(), 'processes ignored Ctrl-C'

@@ -2,9 +2,8 @@
 
 Master on host 1; a publisher (rostopic pub) on host 2, configured well or badly.
 """
-from turtle_lite.testing import wait_for
-
 from multihost.lessons import start_master
+from turtle_lite.testing import wait_for
 
 CHECK = ['rosrun', 'multihost', 'ros_net_check', '--timeout', '1']
 SILENCE_S = 5.0  # an echo that hears nothing for this long: the publisher is unreachable
@@ -38,7 +37,8 @@ def test_unresolvable_hostname_listed_but_silent_then_explained(team):
     # The explanation on host 1 ...
     status, out = team.run(1, CHECK)
     assert status == 1, out
-    assert "advertises http://ghost-laptop:" in out and "'ghost-laptop' does not resolve here" in out
+    assert 'advertises http://ghost-laptop:' in out
+    assert "'ghost-laptop' does not resolve here" in out
     assert 'add "<its address> ghost-laptop" to /etc/hosts' in out
     # ... and on host 2, with the exact fix.
     status, out = team.run(2, CHECK, {'ROS_HOSTNAME': 'ghost-laptop'})

@@ -34,7 +34,8 @@ def test_is_loopback(host, loopback):
     (HOST2, 'export ROS_IP=10.77.0.2'),
     (['127.0.0.1', '10.77.0.2', '192.168.1.5'],
      'export ROS_IP=<the address on the team network: one of 10.77.0.2, 192.168.1.5>'),
-    (['127.0.0.1'], 'connect this host to the team network, then export ROS_IP=<its address there>'),
+    (['127.0.0.1'],
+     'connect this host to the team network, then export ROS_IP=<its address there>'),
 ])
 def test_ros_ip_fix(addrs, fix):
     assert netcheck.ros_ip_fix(addrs) == fix
@@ -58,12 +59,15 @@ def test_parse_master_uri_rejects(uri):
 
 @pytest.mark.parametrize(('host', 'source', 'resolved', 'remote', 'ok', 'what', 'fix'), [
     # the team's good case: an address of this host
-    ('10.77.0.2', 'ROS_IP', ['10.77.0.2'], True, True, 'ROS_IP=10.77.0.2 is an address of this', ''),
+    ('10.77.0.2', 'ROS_IP', ['10.77.0.2'], True, True,
+     'ROS_IP=10.77.0.2 is an address of this', ''),
     # a hostname that resolves to this host
-    ('laptop', 'hostname', ['10.77.0.2'], False, True, 'hostname laptop resolves here to 10.77.0.2', ''),
+    ('laptop', 'hostname', ['10.77.0.2'], False, True,
+     'hostname laptop resolves here to 10.77.0.2', ''),
     # wrong ROS_IP (another host's, or a typo)
     ('10.77.0.9', 'ROS_IP', ['10.77.0.9'], True, False,
-     'ROS_IP=10.77.0.9 is not an address of this host (its addresses: 10.77.0.2', 'export ROS_IP=10.77.0.2'),
+     'ROS_IP=10.77.0.9 is not an address of this host (its addresses: 10.77.0.2',
+     'export ROS_IP=10.77.0.2'),
     # a name no one can resolve
     ('ghost', 'ROS_HOSTNAME', None, True, False, 'ROS_HOSTNAME=ghost does not resolve',
      'export ROS_IP=10.77.0.2'),
@@ -73,7 +77,8 @@ def test_parse_master_uri_rejects(uri):
     # localhost with everything on one machine: fine
     ('localhost', 'ROS_HOSTNAME', ['127.0.0.1'], False, True, 'fine while every node', ''),
     # a hostname that resolves elsewhere (stale /etc/hosts entry)
-    ('laptop', 'hostname', ['10.77.0.7'], True, False, 'resolves here to 10.77.0.7, not to an address',
+    ('laptop', 'hostname', ['10.77.0.7'], True, False,
+     'resolves here to 10.77.0.7, not to an address',
      'export ROS_IP=10.77.0.2'),
 ])
 def test_own_findings(host, source, resolved, remote, ok, what, fix):

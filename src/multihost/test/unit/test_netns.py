@@ -9,7 +9,8 @@ def test_good_prefixes(prefix):
     assert netns.check_prefix(prefix) == prefix
 
 
-@pytest.mark.parametrize('prefix', ['', 'Wsh', '1wsh', 'ws-h', 'ws h', 'abcdefghijklmnopq', None, 3])
+@pytest.mark.parametrize('prefix', ['', 'Wsh', '1wsh', 'ws-h', 'ws h', 'abcdefghijklmnopq',
+                                    None, 3])
 def test_bad_prefixes(prefix):
     with pytest.raises(ValueError, match='prefix'):
         netns.check_prefix(prefix)
