@@ -3,6 +3,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from multihost import hosts, netns
 
 HOSTS = [sys.executable, '-m', 'multihost.hosts']
@@ -55,3 +57,27 @@ def test_not_root_says_so_in_one_line(hosts3):
 def test_bad_count_is_refused(hosts3):
     result = _ws_hosts('--prefix', 'wshbad%d' % os.getpid(), 'up', '0')
     assert result.returncode == 1 and 'expected an integer from 1 to 50' in result.stderr
+
+
+def test_namespaces_not_permitted_says_so_in_one_line(hosts3):
+    """Root in a user namespace (like a container without CAP_SYS_ADMIN) may not mount
+    /run/netns: one line naming the refused step."""
+    if subprocess.run(['unshare', '-Ur', 'true'], capture_output=True, check=False).returncode:
+        pytest.skip('this kernel does not allow user namespaces (unshare -Ur)')
+    result = subprocess.run(['unshare', '-Ur', *HOSTS, 'up', '2'], capture_output=True,
+                            text=True, timeout=60, check=False)
+    assert result.returncode == 1
+    assert result.stderr.strip().startswith("hosts: cannot run: 'ip netns add' is not permitted")
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+
+
+def test_a_failed_up_removes_what_it_made(hosts3):
+    prefix = 'wshf%d' % os.getpid()
+    # Host 2's name is taken, so `up 3` fails half-way.
+    subprocess.run(['ip', 'netns', 'add', netns.host_ns(prefix, 2)], check=True)
+    try:
+        with pytest.raises(hosts.HostsError, match='%s-h2' % prefix):
+            hosts.Hosts(prefix, 3).up()
+        assert netns.ours(prefix, hosts.list_namespaces()) == []
+    finally:
+        hosts.remove(prefix)
