@@ -2,22 +2,26 @@
 
 Command line (./ws hosts ...; needs root and iproute2's `ip netns`):
     up N        create the switch and hosts 1..N (host i is 10.77.0.<i>, named host<i>)
-    down        remove every namespace of the prefix (also: --stale, leftovers of dead runs)
+    down        stop what runs inside, remove every namespace of the prefix (--stale: also
+                leftovers of test runs whose process is gone)
     status      list the prefix's namespaces and each host's address and link state
     exec I CMD  run CMD in host I with ROS_IP=<its address>, ROS_MASTER_URI=http://host 1:11311
     link I up|down   plug in / pull out host I's cable (its switch port)
     netem ARGS | netem off   tc netem on every switch port, e.g. netem delay 20ms loss 1%
 """
 import argparse
+import contextlib
 import os
 import shutil
 import signal
 import subprocess
 import sys
+import time
 
 from multihost import netns
 
 MASTER_PORT = 11311  # each namespace has its own ports: the standard one never collides
+STOP_WAIT_S = 5.0  # processes left in a namespace get this long after SIGTERM, then SIGKILL
 
 
 class HostsError(RuntimeError):
@@ -63,13 +67,13 @@ def host_env(i, base=None):
 
 
 def _pid_alive(pid):
+    """True while process pid runs (a zombie, ended but not yet reaped, does not count)."""
     try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
+        with open('/proc/%d/stat' % pid, encoding='ascii', errors='replace') as f:
+            # state is the field after the parenthesised command name
+            return f.read().rsplit(')', 1)[1].split()[0] != 'Z'
+    except (OSError, IndexError):
         return False
-    except PermissionError:
-        return True
-    return True
 
 
 class Hosts:
@@ -119,9 +123,32 @@ class Hosts:
             _run(argv)
 
 
+def _stop_processes(names):
+    """SIGTERM, then SIGKILL, the processes still running inside the namespaces names.
+
+    A namespace outlives `ip netns del` while a process holds it (a roscore left running
+    by a killed test run); only processes inside these namespaces are signalled.
+    """
+    pids = set()
+    for name in names:
+        pids.update(int(p) for p in _run(['ip', 'netns', 'pids', name], check=False).stdout.split())
+    deadline = time.monotonic() + STOP_WAIT_S
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        for pid in pids:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, sig)
+        while pids and time.monotonic() < deadline:
+            pids = {pid for pid in pids if _pid_alive(pid)}
+            time.sleep(0.05)
+        deadline = time.monotonic() + STOP_WAIT_S
+
+
 def remove(prefix):
-    """Remove every namespace of prefix and its /etc/netns directory; never raises for one."""
-    for name in netns.ours(prefix, list_namespaces()):
+    """Stop the processes inside the namespaces of prefix, remove them and their /etc/netns
+    directories; never raises for one of them."""
+    names = netns.ours(prefix, list_namespaces())
+    _stop_processes(names)
+    for name in names:
         _run(['ip', 'netns', 'del', name], check=False)
         shutil.rmtree(os.path.join(netns.NETNS_ETC, name), ignore_errors=True)
 

@@ -4,6 +4,7 @@ import subprocess
 import sys
 
 import pytest
+from turtle_lite.testing import wait_for
 
 from multihost import hosts, netns
 
@@ -28,6 +29,7 @@ def test_hosts_reach_each_other_by_name(team):
 
 def test_up_status_down_leave_nothing(hosts3):
     prefix = 'wsht%d' % os.getpid()
+    left = None
     made = _ws_hosts('--prefix', prefix, 'up', '2')
     try:
         assert made.returncode == 0, made.stderr
@@ -40,8 +42,14 @@ def test_up_status_down_leave_nothing(hosts3):
         assert '%s-sw: switch, ports: p1 UP, p2 UP' % prefix in status.stdout, status.stdout
         missing = _ws_hosts('--prefix', prefix, 'exec', '3', 'true')
         assert missing.returncode == 1 and 'no host 3' in missing.stderr
+        # A process left running in host 1 (as after `./ws hosts exec 1 roscore &`).
+        left = subprocess.Popen([*HOSTS, '--prefix', prefix, 'exec', '1', 'sleep', '300'])
+        wait_for(lambda: subprocess.run(['ip', 'netns', 'pids', prefix + '-h1'],
+                                        capture_output=True, text=True).stdout.strip(),
+                 30.0, 'sleep to run in host 1')
     finally:
         gone = _ws_hosts('--prefix', prefix, 'down')
+    assert left is not None and left.wait(timeout=30) != 0  # down stopped it
     assert gone.returncode == 0, gone.stderr
     assert netns.ours(prefix, hosts.list_namespaces()) == []
     assert not os.path.exists(os.path.join(netns.NETNS_ETC, prefix + '-h1'))
