@@ -2,6 +2,7 @@
 import threading
 
 import rospy
+from turtle_lite.rospy_internals import caller_id, connection_ids
 
 from multi_sync.msg import RobotStatus
 from multi_sync.node_util import parse_argv_or_exit, synchronous_publisher
@@ -17,15 +18,6 @@ STATUS_QUEUE = 100
 CONNECT_WAIT_S = 3.0
 # How often a pending GO re-checks the deadline above.
 CHECK_PERIOD_S = 0.05
-
-
-def _listeners(publisher):
-    """Caller ids of the nodes subscribed to publisher.
-
-    rospy has no public call for this; each of the publisher's transports carries the
-    subscriber's caller id (endpoint_id) from the TCPROS connection header.
-    """
-    return {getattr(c, 'endpoint_id', '') for c in list(publisher.impl.connections)}
 
 
 class _RecheckOnConnect(rospy.SubscribeListener):
@@ -77,14 +69,14 @@ class MonitorNode:
         go.is_ready = True
         self._pub.publish(go)
         # Read after publishing: a node that connected meanwhile got the latched GO instead.
-        self._book.go_sent(_listeners(self._pub))
+        self._book.go_sent(connection_ids(self._pub))
 
     def _try_go(self, force=False):
         """Publish the pending GO if every ready robot listens (or force); log it."""
         with self._lock:
             if self._go_deadline is None:
                 return
-            missing = self._book.unconnected(_listeners(self._pub))
+            missing = self._book.unconnected(connection_ids(self._pub))
             if missing and not force:
                 return
             self._go_deadline = None
@@ -102,7 +94,7 @@ class MonitorNode:
             self._try_go(force=True)
 
     def _on_status(self, msg):
-        sender = getattr(msg, '_connection_header', {}).get('callerid', '')
+        sender = caller_id(msg)
         with self._lock:
             outcome = self._book.report(msg.robot_id, msg.is_ready, msg.header.frame_id, sender)
             if outcome is Outcome.TEAM_READY:

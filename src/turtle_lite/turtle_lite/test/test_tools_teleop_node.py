@@ -100,7 +100,8 @@ class TeleopTest(unittest.TestCase):
         rospy.set_param("/badns/scale_angular", "fast")
         self.start_teleop({"ROS_NAMESPACE": "badns"})
         self.assertEqual(self.teleop.proc.wait(timeout=START_DEADLINE_S), 1)
-        wait_for(lambda: "scale_angular must be a number, got 'fast'" in self.teleop.output(),
+        wait_for(lambda: "parameter scale_angular = 'fast': expected a finite number"
+                 in self.teleop.output(),
                  EVENT_DEADLINE_S, "the fatal message naming the parameter")
         self.assertEqual(self.received(), [])
 

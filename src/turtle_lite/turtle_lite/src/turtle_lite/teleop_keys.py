@@ -1,11 +1,12 @@
 """turtle_teleop_key's key mapping: one input byte -> (linear_x, angular_z), no ROS.
 
-Mirrors turtlesim's teleop (TURTLESIM.md 1.11); the node in teleop.py reads the bytes and
-publishes the Twists.
+Mirrors turtlesim's teleop (TURTLESIM.md 1.11); the node in turtle_teleop_key_node.py reads
+the bytes and publishes the Twists.
 """
 
-import math
 from dataclasses import dataclass
+
+from turtle_lite.params import check_number
 
 # Only the last byte of an arrow escape sequence (ESC [ A) matters, exactly as in turtlesim,
 # so a plain uppercase A-D also drives the turtle.
@@ -33,13 +34,9 @@ class TeleopConfig:
     scale_angular: float = DEFAULT_SCALE
 
     def __post_init__(self):
+        # Any finite number, as turtlesim: a negative scale simply reverses the keys.
         for name in ("scale_linear", "scale_angular"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise ValueError(f"{name} must be a number, got {value!r}")
-            if not math.isfinite(value):
-                raise ValueError(f"{name} must be finite, got {value!r}")
-            object.__setattr__(self, name, float(value))
+            object.__setattr__(self, name, check_number(name, getattr(self, name)))
 
 
 def key_to_command(key, config):

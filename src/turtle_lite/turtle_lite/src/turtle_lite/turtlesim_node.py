@@ -20,194 +20,47 @@ Parameters:
   ~save_image_on_shutdown (bool, default false): write ~image_path when the node shuts down.
 """
 
-import collections
-import contextlib
 import math
 import os
-import struct
 import threading
 import time
-from dataclasses import dataclass
 
 import rospy
-from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty, EmptyResponse
-from turtlesim.msg import Color, Pose
 from turtlesim.srv import (
     Kill,
     KillResponse,
-    SetPen,
     SetPenResponse,
     Spawn,
     SpawnResponse,
-    TeleportAbsolute,
     TeleportAbsoluteResponse,
-    TeleportRelative,
     TeleportRelativeResponse,
 )
 
-from turtle_lite.frames import send_frame
 from turtle_lite.srv import SaveImage, SaveImageResponse
 
 from . import namespaces
 from .naming import NameCounter, graph_name_error
-from .world import CENTER, DEFAULT_BACKGROUND, DT_S, MAX_ABS_VELOCITY, World
+from .rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
+from .sim_params import ensure_background_params, load_params, read_background
+from .tick_loop import TickLoop
+from .tick_publish import publish_tick
+from .turtle_handle import TurtleHandle
+from .wall_log import WallLog
+from .world import CENTER, DT_S, MAX_ABS_VELOCITY, World
 
-#: TCPROS frames of turtlesim/Pose (5 float32) and turtlesim/Color (3 uint8): a
-#: little-endian uint32 length, then the fields in order (the md5sums fix this layout).
-_POSE_FRAME = struct.Struct('<I5f')
-_POSE_BYTES = 20
-_COLOR_FRAME = struct.Struct('<I3B')
-_COLOR_BYTES = 3
-DEFAULT_IMAGE_PATH = '~/.ros/turtle_lite.png'
 #: Throttle period of the WARNs about bad input (a bad publisher can repeat at any rate).
 BAD_INPUT_WARN_PERIOD_S = 1.0
-#: If the tick thread falls this many periods behind (machine suspended or overloaded) it
-#: re-anchors its schedule instead of firing a burst of catch-up ticks, as a Qt timer does.
-MAX_LAG_TICKS = 4
 #: On shutdown, how long to wait for rospy to finish its hooks, then how long to give its
 #: XML-RPC thread to send the reply to the shutdown request (rospy itself sleeps 0.1 s).
 SHUTDOWN_REPLY_WAIT_S = 0.4
 SHUTDOWN_REPLY_GRACE_S = 0.15
 
 
-@dataclass(frozen=True)
-class SimParams:
-    """The node's own settings (read once at start; the background is read on clear)."""
-
-    gui: bool = False
-    image_path: str = DEFAULT_IMAGE_PATH
-    save_image_on_shutdown: bool = False
-
-
-def _typed_param(name, default, kind):
-    """Private param ``name`` if it has type ``kind``, else WARN and ``default``."""
-    value = rospy.get_param('~' + name, default)
-    ok = isinstance(value, kind) and not (kind is int and isinstance(value, bool))
-    if kind is str:
-        ok = ok and bool(value)
-    if not ok:
-        rospy.logwarn('Parameter ~%s=%r is not a %s; using the default %r',
-                      name, value, kind.__name__, default)
-        return default
-    return value
-
-
-def load_params():
-    return SimParams(gui=_typed_param('gui', False, bool),
-                     image_path=_typed_param('image_path', DEFAULT_IMAGE_PATH, str),
-                     save_image_on_shutdown=_typed_param('save_image_on_shutdown', False, bool))
-
-
 def _bad_values(limit=math.inf, **values):
     """'name=value' for each value that is not finite or beyond +-limit ('' if none)."""
     return ', '.join('%s=%r' % (k, v) for k, v in values.items()
                      if not math.isfinite(v) or abs(v) > limit)
-
-
-def _tick_publisher(name, msg_class):
-    """A publisher that the tick thread writes to synchronously.
-
-    rospy's queue_size wraps every connection in a QueuedConnection: one thread per
-    subscriber, woken for each message, plus a sleep(0) per write. At 62.5 Hz per turtle
-    that dominated the node's CPU, so the tick thread writes the frames itself, never
-    blocking (see _write_frame).
-    Setting the impl's queue size after construction avoids rospy's warning about a missing
-    queue_size; connections made from now on are plain transports.
-    """
-    pub = rospy.Publisher(name, msg_class, queue_size=1)
-    pub.impl.queue_size = None
-    return pub
-
-
-class TurtleHandle:
-    """The six ROS resources of one turtle, created from already-resolved full names."""
-
-    def __init__(self, sim, name, resources):
-        self.name = name
-        self.resources = resources
-        self.pose_pub = self.color_pub = self.cmd_sub = None
-        self.services = []
-        try:
-            self.pose_pub = _tick_publisher(resources['pose'], Pose)
-            self.color_pub = _tick_publisher(resources['color_sensor'], Color)
-            for key, srv_class, handler in (
-                    ('set_pen', SetPen, sim.handle_set_pen),
-                    ('teleport_relative', TeleportRelative, sim.handle_teleport_relative),
-                    ('teleport_absolute', TeleportAbsolute, sim.handle_teleport_absolute)):
-                self.services.append(rospy.Service(
-                    resources[key], srv_class,
-                    lambda req, handler=handler: handler(self.name, req)))
-            # Subscribe last, once everything the callback touches exists.
-            self.cmd_sub = rospy.Subscriber(resources['cmd_vel'], Twist,
-                                            lambda msg: sim.handle_cmd_vel(self.name, msg),
-                                            queue_size=1)
-        except Exception:
-            self.unregister()  # e.g. a service name already taken: leave nothing behind
-            raise
-
-    def unregister(self):
-        """Remove all six resources from the master (turtlesim's NodeHandle going away)."""
-        parts = [self.cmd_sub, self.pose_pub, self.color_pub]
-        actions = [p.unregister for p in parts if p is not None]
-        actions += [srv.shutdown for srv in self.services]
-        for action in actions:
-            try:
-                action()
-            except Exception as exc:
-                rospy.logdebug('while unregistering turtle [%s]: %s', self.name, exc)
-
-
-class WallLog:
-    """Logs turtlesim's wall WARNs from its own thread, in order.
-
-    turtlesim warns on every tick for every turtle pushing against a wall; a rospy log line
-    costs a few hundred microseconds (console, file, /rosout), so with many turtles at the
-    walls logging from the tick thread would slow the 62.5 Hz tick itself. If the logger
-    falls more than MAX_BACKLOG lines behind, the oldest are dropped and counted.
-    """
-
-    MAX_BACKLOG = 5000
-
-    def __init__(self):
-        self._queue = collections.deque()
-        self._cond = threading.Condition()
-        self._dropped = 0
-        self._stopped = False
-        self._thread = threading.Thread(target=self._run, name='turtlesim_walls', daemon=True)
-
-    def start(self):
-        self._thread.start()
-
-    def stop(self):
-        with self._cond:
-            self._stopped = True
-            self._cond.notify()
-
-    def post(self, hits):
-        with self._cond:
-            self._queue.extend(hits)
-            while len(self._queue) > self.MAX_BACKLOG:
-                self._queue.popleft()
-                self._dropped += 1
-            self._cond.notify()
-
-    def _run(self):
-        while True:
-            with self._cond:
-                while not self._queue and not self._stopped:
-                    self._cond.wait()
-                if self._stopped:
-                    return
-                hits = list(self._queue)
-                self._queue.clear()
-                dropped, self._dropped = self._dropped, 0
-            if dropped:
-                rospy.logwarn('(%d wall warnings dropped: too many turtles at the walls)',
-                              dropped)
-            for hit in hits:
-                rospy.logwarn('Oh no! I hit the wall! (Clamping from [x=%f, y=%f])',
-                              hit.x, hit.y_s)
 
 
 class TurtleSimNode:
@@ -217,21 +70,20 @@ class TurtleSimNode:
         self.params = params
         self.node_name = rospy.get_name()
         self.namespace = namespaces.node_namespace(self.node_name)
-        self.mappings = dict(rospy.names.get_mappings())
+        self.mappings = name_mappings()
         self._lock = threading.Lock()          # the world and the turtle handles
         self._svc_lock = threading.RLock()     # spawn / kill / reset / clear, one at a time
         self._pending_cmds = {}
         self._handles = {}
         self.counter = NameCounter()
-        self._stop = threading.Event()
-        self._thread = None
+        self._ticker = TickLoop(self._tick, DT_S, 'turtlesim_tick')
         self._wall_log = WallLog()
         self._reset_pool = None  # handles a reset may give back to the new turtle1
         self.tick_count = 0
 
         # turtlesim's start-up order (TURTLESIM.md 1.5).
-        self._ensure_background_params()
-        self.world = World(self._read_background())
+        ensure_background_params()
+        self.world = World(read_background())
         self._node_services = [
             rospy.Service('clear', Empty, self.handle_clear),
             rospy.Service('reset', Empty, self.handle_reset),
@@ -241,28 +93,6 @@ class TurtleSimNode:
         ]
         rospy.loginfo('Starting turtlesim with node name %s', self.node_name)
         self.spawn('', CENTER, CENTER, 0.0)
-
-    # ------------------------------------------------------------------ params
-    @staticmethod
-    def _ensure_background_params():
-        for channel, default in zip('rgb', DEFAULT_BACKGROUND, strict=True):
-            key = '~background_' + channel
-            if not rospy.has_param(key):
-                rospy.set_param(key, default)
-
-    @staticmethod
-    def _read_background():
-        """The background params, or the built-in defaults for missing or non-int ones."""
-        rgb = []
-        for channel, default in zip('rgb', DEFAULT_BACKGROUND, strict=True):
-            key = '~background_' + channel
-            value = rospy.get_param(key, default)
-            if isinstance(value, bool) or not isinstance(value, int):
-                rospy.logwarn('Parameter %s=%r is not an int; using the default %d',
-                              rospy.resolve_name(key), value, default)
-                value = default
-            rgb.append(value & 0xFF)  # Qt keeps the low 8 bits of each channel
-        return tuple(rgb)
 
     # ------------------------------------------------------------------ turtles
     def spawn(self, name, x, y, theta):
@@ -345,7 +175,7 @@ class TurtleSimNode:
             self.clear()
 
     def clear(self):
-        background = self._read_background()
+        background = read_background()
         with self._lock:
             self.world.clear(background)
 
@@ -442,35 +272,16 @@ class TurtleSimNode:
         return save_png(os.path.abspath(os.path.expanduser(path)), pixels, poses)
 
     # ------------------------------------------------------------------ ticking
+    # Called by the TickLoop every DT_S; the wall WARNs and the frames leave the lock.
     def start(self):
         self._wall_log.start()
-        self._thread = threading.Thread(target=self._run, name='turtlesim_tick', daemon=True)
-        self._thread.start()
+        self._ticker.start()
 
     def stop(self, wait=True):
-        self._stop.set()
+        self._ticker.stop()
         self._wall_log.stop()
-        if wait and self._thread is not None and self._thread is not threading.current_thread():
-            self._thread.join(timeout=1.0)
-
-    def _run(self):
-        next_tick = time.monotonic()
-        while not self._stop.is_set():
-            next_tick += DT_S
-            delay = next_tick - time.monotonic()
-            if delay > 0.0:
-                # A plain sleep is cheaper than Event.wait; stop() is seen within a tick.
-                time.sleep(delay)
-                if self._stop.is_set():
-                    break
-            elif delay < -MAX_LAG_TICKS * DT_S:
-                next_tick = time.monotonic()
-            try:
-                self._tick()
-            except Exception as exc:
-                if self._stop.is_set() or rospy.is_shutdown():
-                    break
-                rospy.logerr_throttle(1.0, 'turtlesim tick failed: %r' % exc)
+        if wait:
+            self._ticker.join(timeout_s=1.0)
 
     def _tick(self):
         now = time.time()
@@ -486,60 +297,12 @@ class TurtleSimNode:
             handles = [self._handles.get(n) for n in result.names]
         if result.wall_hits:
             self._wall_log.post(result.wall_hits)
-        poses = None
-        colors = None
-        for i, handle in enumerate(handles):
-            if handle is None:
-                continue
-            if handle.pose_pub.impl.connections:
-                if poses is None:
-                    poses = result.poses.tolist()
-                _write_frame(handle.pose_pub, _POSE_FRAME.pack(_POSE_BYTES, *poses[i]))
-            if handle.color_pub.impl.connections:
-                if colors is None:
-                    colors = result.colors.tolist()
-                _write_frame(handle.color_pub, _COLOR_FRAME.pack(_COLOR_BYTES, *colors[i]))
-
-
-def _write_frame(pub, frame):
-    """Send one ready-made TCPROS frame to every subscriber of ``pub``.
-
-    This is what rospy's _PublisherImpl.publish does after serialising, without the
-    per-call checks, buffer juggling and message object: the tick sends up to 62.5 x 2 x N
-    messages a second and that overhead was most of the node's CPU. Unlike rospy's blocking
-    sendall, a subscriber that stops reading only loses frames (as with roscpp's queue of 1)
-    and never stalls the tick; a connection that fails, or took half a frame, is closed.
-    """
-    impl = pub.impl
-    if impl is None or impl.closed:
-        return  # unregistered (killed) between the step and the publish
-    for conn in impl.connections:
-        try:
-            if send_frame(conn.socket, frame):
-                conn.stat_bytes += len(frame)
-                conn.stat_num_msg += 1
-        except Exception:
-            with contextlib.suppress(Exception):
-                impl.remove_connection(conn)
-                conn.close()
-
-
-def _cheap_rosout():
-    """Make each rospy log line cheaper without touching the parameter server.
-
-    For every line, rospy's /rosout handler looks up /rosout_disable_topics_generation
-    (an XML-RPC call to the master while the param is unset) and, unless it is true, lists
-    every topic of the node into the Log message: 3 per turtle. Seeding rospy's local
-    parameter cache with true skips both; Log.topics is then empty, which only rqt_console's
-    topic column shows.
-    """
-    from rospy.impl.paramserver import get_param_server_cache
-    get_param_server_cache().set(rospy.resolve_name('/rosout_disable_topics_generation'), True)
+        publish_tick(handles, result)
 
 
 def main():
     rospy.init_node('turtlesim')
-    _cheap_rosout()
+    cheap_rosout()
     params = load_params()
     sim = TurtleSimNode(params)
     done = threading.Event()
@@ -559,7 +322,7 @@ def main():
                 rospy.logerr('Could not save the image to [%s]: %s', params.image_path, exc)
         done.set()
 
-    rospy.core.add_preshutdown_hook(on_shutdown)
+    add_preshutdown_hook(on_shutdown)
     sim.start()
     if params.gui:
         from .gui import run_window  # tkinter and ImageTk only when the window is wanted
@@ -569,6 +332,6 @@ def main():
     # Let rospy finish its shutdown and answer the shutdown request (rosnode kill) before
     # the interpreter exits: exiting mid-reply makes rosnode report a connection error.
     deadline = time.monotonic() + SHUTDOWN_REPLY_WAIT_S
-    while not rospy.core.is_shutdown() and time.monotonic() < deadline:
+    while not rospy.is_shutdown() and time.monotonic() < deadline:
         time.sleep(0.01)
     time.sleep(SHUTDOWN_REPLY_GRACE_S)

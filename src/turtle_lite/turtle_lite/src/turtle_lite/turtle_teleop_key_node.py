@@ -11,6 +11,7 @@ import sys
 import rospy
 from geometry_msgs.msg import Twist
 
+from turtle_lite.param_loader import load_or_exit
 from turtle_lite.teleop_keys import (
     BANNER,
     DEFAULT_SCALE,
@@ -77,7 +78,10 @@ class TeleopNode:
 
 
 def load_config():
-    """Read scale_linear/scale_angular from the node namespace into a TeleopConfig."""
+    """Read scale_linear/scale_angular from the node namespace into a TeleopConfig.
+
+    Raises ParamError (a ValueError) naming a scale that is not a finite number.
+    """
     values = {}
     for name in ("scale_linear", "scale_angular"):
         values[name] = rospy.get_param(name, DEFAULT_SCALE)
@@ -94,11 +98,7 @@ def main():
         )
         sys.exit(1)
     rospy.init_node("teleop_turtle")
-    try:
-        config = load_config()
-    except ValueError as err:
-        rospy.logfatal("turtle_teleop_key: bad parameter: %s", err)
-        sys.exit(1)
+    config = load_or_exit(load_config, "turtle_teleop_key")
     rospy.loginfo(
         "teleop_turtle: scale_linear=%g m/s, scale_angular=%g rad/s",
         config.scale_linear,

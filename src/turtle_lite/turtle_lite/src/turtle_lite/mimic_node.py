@@ -9,6 +9,7 @@ from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
 from turtle_lite.mimic_relay import mimic_topics, pose_to_command
+from turtle_lite.rospy_internals import name_mappings
 
 
 class MimicNode:
@@ -47,7 +48,7 @@ def main():
     rospy.init_node("turtle_mimic")
     try:
         pose_topic, cmd_vel_topic = mimic_topics(
-            rospy.get_namespace(), rospy.get_name(), rospy.names.get_mappings())
+            rospy.get_namespace(), rospy.get_name(), name_mappings())
     except ValueError as err:
         rospy.logfatal("mimic: bad input/output remapping: %s", err)
         raise SystemExit(1) from err

@@ -1,0 +1,117 @@
+"""Pins, without a master, the rospy internals turtle_lite.rospy_internals relies on.
+
+Each check fails naming the attribute, what it should do and the installed rospy's version.
+The behaviour that needs a master and connections (a publisher's connections, frames written
+to them, the /rosout cache seed, _connection_header) is pinned by rospy_internals.test.
+"""
+import inspect
+import subprocess
+import sys
+
+import pytest
+import rospy
+import rospy.core
+import rospy.impl.paramserver
+import rospy.impl.tcpros_base
+import rospy.names
+import rospy.topics
+from turtle_lite.testing import pin
+
+from turtle_lite import rospy_internals
+
+RUN_TIMEOUT_S = 60.0  # a fresh interpreter importing rospy; generous on a loaded machine
+
+
+def _run(code, *argv):
+    """Run code in a fresh /usr/bin/python3 (rospy's process state stays out of pytest)."""
+    done = subprocess.run([sys.executable, '-c', code, *argv], capture_output=True, text=True,
+                          timeout=RUN_TIMEOUT_S, check=False)
+    assert done.returncode == 0, done.stderr
+    return done.stdout.strip()
+
+
+def test_param_cache_seed_is_read_back():
+    cache = getattr(rospy.impl.paramserver, 'get_param_server_cache', None)
+    pin(callable(cache), 'rospy.impl.paramserver.get_param_server_cache', 'exists')
+    key = '/turtle_lite_unit_test_cache_key'
+    cache().set(key, True)
+    try:
+        value = cache().get(key)
+    except KeyError:
+        value = None
+    pin(value is True, 'ParamServerCache.set()/get()', 'returns what was set')
+
+
+def test_rosout_handler_reads_the_cached_param():
+    # rospy's /rosout handler must look the param up through rospy.get_param (which reads
+    # the cache) under this exact name, or seeding the cache changes nothing.
+    import rospy.impl.rosout as rosout
+    source = inspect.getsource(rosout)
+    pin('get_param_cached("%s"' % rospy_internals.ROSOUT_TOPICS_PARAM in source,
+        'rospy.impl.rosout', 'reads %s through the parameter cache'
+        % rospy_internals.ROSOUT_TOPICS_PARAM)
+
+
+def test_preshutdown_hook_gets_the_reason_before_shutdown():
+    pin(callable(getattr(rospy.core, 'add_preshutdown_hook', None)),
+        'rospy.core.add_preshutdown_hook', 'exists')
+    out = _run('import rospy\n'
+               'from turtle_lite.rospy_internals import add_preshutdown_hook\n'
+               'add_preshutdown_hook(lambda r: print(r, rospy.is_shutdown()))\n'
+               'rospy.signal_shutdown("pinned reason")\n')
+    pin(out == 'pinned reason False', 'rospy.core.add_preshutdown_hook',
+        'calls its hook with the reason before is_shutdown() (got %r)' % out)
+
+
+def test_name_mappings_are_the_command_line_remaps():
+    pin(callable(getattr(rospy.names, 'get_mappings', None)), 'rospy.names.get_mappings',
+        'exists')
+    out = _run('from turtle_lite.rospy_internals import name_mappings\n'
+               'print(sorted(name_mappings().items()))\n', 'input:=turtlesim1/turtle1',
+               '/turtle1:=/robot1')
+    pin(out == "[('/turtle1', '/robot1'), ('input', 'turtlesim1/turtle1')]",
+        'rospy.names.get_mappings()', 'returns the unresolved argv remaps (got %r)' % out)
+
+
+@pytest.mark.parametrize('method', ['remove_connection', 'add_connection'])
+def test_publisher_impl_methods(method):
+    pin(callable(getattr(rospy.topics._PublisherImpl, method, None)),
+        'rospy.topics._PublisherImpl.%s' % method, 'exists')
+
+
+@pytest.mark.parametrize('attribute', ['connections', 'closed'])
+def test_topic_impl_attributes(attribute):
+    impl = rospy.topics._PublisherImpl('/pinned', rospy.AnyMsg)
+    pin(hasattr(impl, attribute), '_PublisherImpl.%s' % attribute, 'exists')
+    pin(impl.connections == [] and impl.closed is False,
+        '_PublisherImpl.connections/closed', 'start as [] and False')
+
+
+@pytest.mark.parametrize('attribute', ['socket', 'endpoint_id', 'stat_bytes', 'stat_num_msg',
+                                       'close'])
+def test_transport_attributes(attribute):
+    transport = rospy.impl.tcpros_base.TCPROSTransport(
+        rospy.impl.tcpros_base.TCPROSTransportProtocol('/pinned', rospy.AnyMsg), '/pinned')
+    pin(hasattr(transport, attribute), 'TCPROSTransport.%s' % attribute, 'exists')
+
+
+def test_publisher_without_queue_size_keeps_plain_connections():
+    # tick_publisher() clears impl.queue_size so that connections are the transports
+    # themselves, which write_frame() writes to; remove_connection() takes one out again.
+    impl = rospy.topics._PublisherImpl('/pinned', rospy.AnyMsg)
+    pin(hasattr(impl, 'queue_size'), '_PublisherImpl.queue_size', 'exists')
+    impl.queue_size = None
+    transport = rospy.impl.tcpros_base.TCPROSTransport(
+        rospy.impl.tcpros_base.TCPROSTransportProtocol('/pinned', rospy.AnyMsg), '/pinned')
+    impl.add_connection(transport)
+    pin(impl.connections == [transport], '_PublisherImpl.add_connection() with queue_size None',
+        'adds the transport itself to impl.connections')
+    impl.remove_connection(transport)
+    pin(impl.connections == [], '_PublisherImpl.remove_connection()',
+        'removes the transport from impl.connections')
+
+
+def test_connection_header_is_set_on_received_messages():
+    source = inspect.getsource(rospy.impl.tcpros_base)
+    pin('._connection_header = ' in source, 'message._connection_header',
+        'is set by rospy.impl.tcpros_base on every received message')
