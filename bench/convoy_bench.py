@@ -143,9 +143,10 @@ def child(n_robots, duration_s):
     import rosnode
     import rospy
     from convoy.bag_report import summarise_bag
-    from convoy.harness import LaunchedConvoy, convoy_node_names, launch_for, wait_until
+    from convoy.harness import POLL_S, LaunchedConvoy, convoy_node_names, launch_for
     from convoy.metrics import delays_since_newest, percentile
     from convoy.recording import BagRecorder, convoy_topics
+    from turtle_lite.testing import wait_for
 
     out_dir = tempfile.mkdtemp(prefix='convoy_bench_')
     bag_path = os.path.join(out_dir, 'convoy.bag')
@@ -158,21 +159,22 @@ def child(n_robots, duration_s):
         rospy.init_node('convoy_bench', anonymous=True, disable_signals=True)
         master = rosgraph.Master('/convoy_bench')
         poses = ['/robot%d/pose' % i for i in range(1, n_robots + 1)]
-        wait_until(lambda: recorder.receiving(master, poses), STARTUP_TIMEOUT_S, 'every robot',
-                   launch.alive)
+        wait_for(lambda: recorder.receiving(master, poses), STARTUP_TIMEOUT_S, 'every robot',
+                 POLL_S, alive=launch.alive)
         t0 = time.monotonic()  # the figures start here: the followers' catch-up counts
         names = convoy_node_names(n_robots)
-        wait_until(lambda: set(names) <= set(rosnode.get_node_names()), STARTUP_TIMEOUT_S,
-                   'the convoy nodes', launch.alive)
+        wait_for(lambda: set(names) <= set(rosnode.get_node_names()), STARTUP_TIMEOUT_S,
+                 'the convoy nodes', POLL_S, alive=launch.alive)
         pids = {name: xmlrpc.client.ServerProxy(rosnode.get_api_uri(master, name))
                 .getPid('/convoy_bench')[2] for name in names}
         probe = LatencyProbe()
-        wait_until(probe.connected, STARTUP_TIMEOUT_S, 'the probe convoy_node', launch.alive)
+        wait_for(probe.connected, STARTUP_TIMEOUT_S, 'the probe convoy_node', POLL_S,
+                 alive=launch.alive)
         probe.start()
         cpu_t0 = time.monotonic()
         cpu0 = {name: _proc_cpu_s(pid) for name, pid in pids.items()}
-        wait_until(lambda: time.monotonic() - t0 >= duration_s, duration_s + 30.0, 'the run',
-                   launch.alive)
+        wait_for(lambda: time.monotonic() - t0 >= duration_s, duration_s + 30.0, 'the run', POLL_S,
+                 alive=launch.alive)
         wall = time.monotonic() - cpu_t0
         cpu = {name: 100.0 * (_proc_cpu_s(pid) - cpu0[name]) / wall for name, pid in pids.items()}
         rss = {name: _proc_rss_mb(pid) for name, pid in pids.items()}

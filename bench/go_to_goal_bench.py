@@ -25,8 +25,9 @@ import time
 
 import numpy as np
 import rospy
-from convoy.harness import HarnessError, LaunchedConvoy, wait_until
+from convoy.harness import POLL_S, LaunchedConvoy
 from geometry_msgs.msg import Pose2D, Twist
+from turtle_lite.testing import WaitError, wait_for
 from turtlesim.msg import Pose as TurtlePose
 from turtlesim.srv import TeleportAbsolute
 
@@ -148,9 +149,9 @@ class LabAsWritten:
 def _teleport_to_start(cmd_pub, watch):
     cmd_pub.publish(Twist())
     rospy.ServiceProxy('/pioneer/teleport_absolute', TeleportAbsolute)(*START)
-    wait_until(lambda: watch.pose is not None and abs(watch.pose.x - START[0]) < 1e-4
-               and abs(watch.pose.theta - START[2]) < 1e-4 and watch.at_rest(),
-               REST_TIMEOUT_S, 'the Pioneer back at the start, at rest')
+    wait_for(lambda: watch.pose is not None and abs(watch.pose.x - START[0]) < 1e-4
+             and abs(watch.pose.theta - START[2]) < 1e-4 and watch.at_rest(),
+             REST_TIMEOUT_S, 'the Pioneer back at the start, at rest', POLL_S)
 
 
 def _result(watch, goal, sent_at, arrived_at):
@@ -158,7 +159,7 @@ def _result(watch, goal, sent_at, arrived_at):
         turned, wall, peak = watch.counters()
         return {'time_s': None, 'pos_err_m': None, 'head_err_rad': None, 'turned_rad': turned,
                 'wall_poses': wall, 'peak': peak}
-    wait_until(watch.at_rest, REST_TIMEOUT_S, 'the Pioneer at rest after arriving')
+    wait_for(watch.at_rest, REST_TIMEOUT_S, 'the Pioneer at rest after arriving', POLL_S)
     pose = watch.pose
     turned, wall, peak = watch.counters()
     return {'time_s': arrived_at - sent_at, 'peak': peak,
@@ -169,7 +170,8 @@ def _result(watch, goal, sent_at, arrived_at):
 
 def run_lab(cmd_pub, watch):
     lab = LabAsWritten(cmd_pub)
-    wait_until(lambda: lab.x_turtle is not None, START_TIMEOUT_S, 'the lab copy\'s first pose')
+    wait_for(lambda: lab.x_turtle is not None, START_TIMEOUT_S, 'the lab copy\'s first pose',
+             POLL_S)
     _teleport_to_start(cmd_pub, watch)
     rows = []
     for goal in GOALS:
@@ -193,8 +195,8 @@ def run_ours(cmd_pub, watch, log_dir):
                                  '__name:=move_turtle_to_goal'], stdout=log,
                                 stderr=subprocess.STDOUT)
         try:
-            wait_until(lambda: goal_pub.get_num_connections() > 0, START_TIMEOUT_S,
-                       'move_turtle_to_goal subscribed to /pioneer/goal')
+            wait_for(lambda: goal_pub.get_num_connections() > 0, START_TIMEOUT_S,
+                     'move_turtle_to_goal subscribed to /pioneer/goal', POLL_S)
             _teleport_to_start(cmd_pub, watch)
             rows = []
             for goal in GOALS:
@@ -203,9 +205,9 @@ def run_ours(cmd_pub, watch, log_dir):
                 sent = time.monotonic()
                 goal_pub.publish(Pose2D(*goal))
                 try:
-                    wait_until(lambda g=goal, c=count: any(r[1] == g for r in reached[c:]),
-                               GOAL_TIMEOUT_S, 'goal %r reached' % (goal,))
-                except HarnessError:
+                    wait_for(lambda g=goal, c=count: any(r[1] == g for r in reached[c:]),
+                             GOAL_TIMEOUT_S, 'goal %r reached' % (goal,), POLL_S)
+                except WaitError:
                     rows.append(_result(watch, goal, sent, None))
                     break
                 arrived = next(r[0] for r in reached[count:] if r[1] == goal)
@@ -230,8 +232,8 @@ def main():
         rospy.init_node('go_to_goal_bench', disable_signals=True)
         cmd_pub = rospy.Publisher('/pioneer/cmd_vel', Twist, queue_size=10)
         watch = Watch()
-        wait_until(lambda: watch.pose is not None and cmd_pub.get_num_connections() > 0,
-                   START_TIMEOUT_S, 'the stand-in Pioneer', launch.alive)
+        wait_for(lambda: watch.pose is not None and cmd_pub.get_num_connections() > 0,
+                 START_TIMEOUT_S, 'the stand-in Pioneer', POLL_S, alive=launch.alive)
         print('go_to_goal_bench: lab_as_written...', flush=True)
         lab_rows = run_lab(cmd_pub, watch)
         print('go_to_goal_bench: ours...', flush=True)

@@ -11,6 +11,7 @@ monitor:=true` each, it measures:
   * the time from starting roslaunch to every robot having moved.
 It prints a markdown table: medians over all robots of all runs, and maxima.
 """
+import contextlib
 import os
 import re
 import signal
@@ -24,6 +25,7 @@ import time
 import rosgraph
 import rospy
 from geometry_msgs.msg import Twist
+from turtle_lite.testing import WaitError, wait_for
 
 from multi_sync.msg import RobotStatus
 
@@ -123,13 +125,15 @@ def one_run(recorder, n, log_path):
             ['roslaunch', 'multi_sync', 'multi_sync.launch', 'team_size:=%d' % n,
              'monitor:=true'], stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
     try:
-        deadline = started + RUN_DEADLINE_S
-        while not recorder.complete(n) and time.time() < deadline:
-            time.sleep(0.05)
+        # A run that does not complete in time is reported below, not raised.
+        with contextlib.suppress(WaitError):
+            wait_for(lambda: recorder.complete(n), RUN_DEADLINE_S, 'every robot moving', 0.05)
         rss = robot_rss_mb(launch.pid)
         # The robots log their first-move line on their first tick after GO.
-        while len(first_move_lines(log_path)) < n and time.time() < deadline:
-            time.sleep(0.1)
+        with contextlib.suppress(WaitError):
+            wait_for(lambda: len(first_move_lines(log_path)) >= n,
+                     max(0.0, started + RUN_DEADLINE_S - time.time()),
+                     'every first-move log line', 0.1)
     finally:
         stop(launch)
     with recorder.lock:
@@ -150,11 +154,10 @@ def main():
     core = subprocess.Popen(['roscore', '-p', str(port)], stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL, start_new_session=True)
     try:
-        deadline = time.time() + 30
-        while not rosgraph.is_master_online():
-            if time.time() > deadline:
-                sys.exit('bench: roscore did not start')
-            time.sleep(0.2)
+        try:
+            wait_for(rosgraph.is_master_online, 30.0, 'roscore', 0.2)
+        except WaitError:
+            sys.exit('bench: roscore did not start')
         rospy.init_node('multi_sync_bench', disable_signals=True)
         recorder = Recorder(max(n for n, _ in TEAMS))
         rows = []

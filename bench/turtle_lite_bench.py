@@ -32,6 +32,7 @@ import rosgraph
 import rosnode
 import rospy
 from geometry_msgs.msg import Twist
+from turtle_lite.testing import wait_for
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
 
@@ -62,16 +63,6 @@ def free_port():
     with socket.socket() as s:
         s.bind(("localhost", 0))
         return s.getsockname()[1]
-
-
-def wait_until(predicate, deadline_s, what):
-    """Poll predicate every 10 ms until true; raise TimeoutError naming what after deadline_s."""
-    end = time.monotonic() + deadline_s
-    while time.monotonic() < end:
-        if predicate():
-            return
-        time.sleep(0.01)
-    raise TimeoutError(f"timed out after {deadline_s:.0f} s waiting for {what}")
 
 
 def cpu_ticks(pid):
@@ -140,7 +131,7 @@ class Bench:
         self._poses = []
 
         master = rosgraph.Master("/turtle_lite_bench")
-        wait_until(master.is_online, START_DEADLINE_S, "roscore")
+        wait_for(master.is_online, START_DEADLINE_S, "roscore")
         rospy.init_node("turtle_lite_bench", anonymous=True, disable_signals=True)
         self.pose_sub = rospy.Subscriber("turtle1/pose", Pose, self._on_pose, queue_size=100)
 
@@ -167,7 +158,7 @@ class Bench:
         t0 = time.monotonic()
         self.sim = subprocess.Popen(list(command or self.sim_command), env=self.env,
                                     stdout=self.devnull, stderr=self.devnull)
-        wait_until(lambda: self.stamps(), START_DEADLINE_S, "the first /turtle1/pose")
+        wait_for(lambda: self.stamps(), START_DEADLINE_S, "the first /turtle1/pose")
         return self.stamps()[0] - t0
 
     def kill_sim(self):
@@ -243,7 +234,7 @@ class Bench:
         kill.close()
 
         pub = rospy.Publisher("turtle1/cmd_vel", Twist, queue_size=1)
-        wait_until(lambda: pub.get_num_connections() > 0, START_DEADLINE_S,
+        wait_for(lambda: pub.get_num_connections() > 0, START_DEADLINE_S,
                    "the simulator to subscribe turtle1/cmd_vel")
         go, stop = Twist(), Twist()
         go.linear.x = 0.5
@@ -252,13 +243,13 @@ class Bench:
             self.clear_poses()
             t0 = time.monotonic()
             pub.publish(go)
-            wait_until(lambda: any(p.linear_velocity > 0 for _, p in self._poses_copy()),
+            wait_for(lambda: any(p.linear_velocity > 0 for _, p in self._poses_copy()),
                        START_DEADLINE_S, "a moving pose")
             first = next(t for t, p in self._poses_copy() if p.linear_velocity > 0)
             samples.append((first - t0) * 1e3)
             self.clear_poses()
             pub.publish(stop)
-            wait_until(lambda: any(p.linear_velocity == 0 for _, p in self._poses_copy()),
+            wait_for(lambda: any(p.linear_velocity == 0 for _, p in self._poses_copy()),
                        START_DEADLINE_S, "a stopped pose")
             time.sleep(random.uniform(0.0, 0.016))  # decorrelate from the tick phase
         pub.unregister()
@@ -301,9 +292,9 @@ class Bench:
         load = subprocess.Popen([sys.executable, __file__, "--load", *names], env=self.env,
                                 stdout=self.devnull, stderr=self.devnull)
         try:
-            wait_until(lambda: all(counts), START_DEADLINE_S,
+            wait_for(lambda: all(counts), START_DEADLINE_S,
                        f"poses from all {n} turtles")
-            wait_until(lambda: any(p.linear_velocity > 0 for _, p in self._poses_copy()[-5:]),
+            wait_for(lambda: any(p.linear_velocity > 0 for _, p in self._poses_copy()[-5:]),
                        START_DEADLINE_S, "turtle1 moving")
             time.sleep(0.5)
             before = list(counts)

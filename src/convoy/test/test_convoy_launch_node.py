@@ -108,7 +108,7 @@ class TestConvoyLaunch(unittest.TestCase):
             ('bad_missing', 'convoy_node', [],
              ['~leader_pose', 'missing', 'non-empty topic name']),
             ('bad_empty', 'convoy_node', ['_leader_pose:=""'] + CONVOY_NODE_ARGS[1:],
-             ['~leader_pose', "value ''", 'non-empty topic name']),
+             ['~leader_pose', "= ''", 'non-empty topic name']),
             ('bad_blank_speeds', 'convoy_node', CONVOY_NODE_ARGS[:2] + ['_follower_speeds:="  "'],
              ['~follower_speeds', 'non-empty topic name']),
             ('bad_type', 'convoy_node', ['_leader_pose:=5'] + CONVOY_NODE_ARGS[1:],

@@ -1,9 +1,10 @@
 """ROS node that drives the convoy's leader along a figure eight, so nobody needs the keyboard."""
-import sys
 import threading
 from dataclasses import dataclass
 
 import rospy
+from turtle_lite.param_loader import get_private, load_or_exit
+from turtle_lite.params import check_number
 from turtlesim.msg import Pose
 
 from convoy.control import is_finite_pose
@@ -17,7 +18,7 @@ from convoy.path import (
     Lemniscate,
     PurePursuit,
 )
-from convoy.ros_io import CommandPublisher, ConfigError, number_param, pose_from_msg
+from convoy.ros_io import CommandPublisher, pose_from_msg
 
 WARN_PERIOD_S = 5.0  # throttle for repeated bad-input warnings
 # The path must keep this far from the walls: the followers cut inside the leader's curves,
@@ -36,17 +37,17 @@ class AutopilotConfig:
 
 
 def _number_param(name, default):
-    return number_param(name, default, 0.0, allow_minimum=False)
+    return check_number('~' + name, get_private(name, default), low=0.0, low_open=True)
 
 
 def load_config():
-    """Reads and validates the private parameters. Raises ConfigError."""
+    """Reads and validates the private parameters. Raises ParamError or ValueError."""
     path = Lemniscate(centre_x=_number_param('centre_x', WORLD_CENTRE_M),
                       centre_y=_number_param('centre_y', WORLD_CENTRE_M),
                       half_width=_number_param('half_width', DEFAULT_HALF_WIDTH_M),
                       half_height=_number_param('half_height', DEFAULT_HALF_HEIGHT_M))
     if not path.fits_in_world(WALL_MARGIN_M):
-        raise ConfigError('parameters ~centre_x/~centre_y/~half_width/~half_height give a path '
+        raise ValueError('parameters ~centre_x/~centre_y/~half_width/~half_height give a path '
                           'with bounds %r: expected it %.1f m inside the walls of the %.2f m world'
                           % (tuple(round(b, 2) for b in path.bounds()), WALL_MARGIN_M,
                              2.0 * WORLD_CENTRE_M))
@@ -99,11 +100,7 @@ class AutopilotNode:
 def main():
     """Entry point of autopilot."""
     rospy.init_node('autopilot')
-    try:
-        config = load_config()
-    except (ConfigError, ValueError) as err:
-        rospy.logfatal('autopilot: %s', err)
-        sys.exit(1)
+    config = load_or_exit(load_config, 'autopilot')
     rospy.loginfo('autopilot: figure eight centred at (%.2f, %.2f) m, %.2f x %.2f m, at %.2f m/s, '
                   'driving %s from %s', config.path.centre_x, config.path.centre_y,
                   2 * config.path.half_width, 2 * config.path.half_height, config.speed_mps,

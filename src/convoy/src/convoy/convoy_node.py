@@ -1,9 +1,10 @@
 """ROS node of the convoy practice: one follower turtle chasing its leader (convoy_node)."""
-import sys
 import threading
 from dataclasses import dataclass
 
 import rospy
+from turtle_lite.param_loader import get_private, load_or_exit
+from turtle_lite.params import check_number, check_text
 from turtlesim.msg import Pose
 
 from convoy.control import (
@@ -14,7 +15,7 @@ from convoy.control import (
     follow,
     is_finite_pose,
 )
-from convoy.ros_io import CommandPublisher, ConfigError, number_param, pose_from_msg
+from convoy.ros_io import CommandPublisher, pose_from_msg
 
 QUEUE_SIZE = 10  # the course's queue for both subscriptions and the command publisher
 WARN_PERIOD_S = 5.0  # throttle for repeated bad-input warnings
@@ -31,25 +32,22 @@ class ConvoyConfig:
 
 
 def _topic_param(name):
-    value = rospy.get_param('~' + name, None)
-    if value is None:
-        raise ConfigError('parameter ~%s is missing: expected a non-empty topic name, '
-                          'e.g. /robot2/pose' % name)
-    if not isinstance(value, str) or not value.strip():
-        raise ConfigError('parameter ~%s has value %r: expected a non-empty topic name, '
-                          'e.g. /robot2/pose' % (name, value))
-    return value.strip()
+    return check_text('~' + name, get_private(name), 'a non-empty topic name, e.g. /robot2/pose')
+
+
+def _gain_param(name, default):
+    return check_number('~' + name, get_private(name, default), low=0.0)
 
 
 def load_config():
-    """Reads and validates the private parameters. Raises ConfigError."""
+    """Reads and validates the private parameters. Raises ParamError (a ValueError)."""
     return ConvoyConfig(
         leader_pose=_topic_param('leader_pose'),
         follower_pose=_topic_param('follower_pose'),
         follower_speeds=_topic_param('follower_speeds'),
-        gains=Gains(kp_lv=number_param('kp_lv', DEFAULT_KP_LV, 0.0),
-                    kp_av=number_param('kp_av', DEFAULT_KP_AV, 0.0),
-                    tolerance_m=number_param('distance_tolerance', DEFAULT_TOLERANCE_M, 0.0)))
+        gains=Gains(kp_lv=_gain_param('kp_lv', DEFAULT_KP_LV),
+                    kp_av=_gain_param('kp_av', DEFAULT_KP_AV),
+                    tolerance_m=_gain_param('distance_tolerance', DEFAULT_TOLERANCE_M)))
 
 
 class ConvoyNode:
@@ -126,11 +124,7 @@ class ConvoyNode:
 def main():
     """Entry point of convoy_node."""
     rospy.init_node('convoy_node')
-    try:
-        config = load_config()
-    except ConfigError as err:
-        rospy.logfatal('convoy_node: %s', err)
-        sys.exit(1)
+    config = load_or_exit(load_config, 'convoy_node')
     rospy.loginfo('convoy_node: leader_pose=%s follower_pose=%s follower_speeds=%s kp_lv=%g '
                   'kp_av=%g distance_tolerance=%g m',
                   rospy.resolve_name(config.leader_pose), rospy.resolve_name(config.follower_pose),

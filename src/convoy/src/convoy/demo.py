@@ -14,9 +14,10 @@ import time
 import rosgraph
 import rospy
 from turtle_lite.srv import SaveImage
+from turtle_lite.testing import WaitError, wait_for
 
 from convoy.bag_report import BagError, summarise_bag, write_figures
-from convoy.harness import HarnessError, LaunchedConvoy, launch_for, wait_until
+from convoy.harness import POLL_S, HarnessError, LaunchedConvoy, launch_for
 from convoy.recording import BagRecorder, convoy_topics
 from convoy.report import table_lines
 
@@ -58,7 +59,7 @@ def save_canvas(path):
 
 
 def running(launch, recorder):
-    """A predicate for wait_until: the launch and the bag recorder are both still up."""
+    """An alive check for wait_for: the launch and the bag recorder are both still up."""
     return lambda: launch.alive() and recorder.alive()
 
 
@@ -79,17 +80,17 @@ def run(args):
         master = rosgraph.Master(rospy.get_name())
         alive = running(launch, recorder)
         poses = ['/robot%d/pose' % i for i in range(1, args.n + 1)]
-        wait_until(lambda: recorder.receiving(master, poses), STARTUP_TIMEOUT_S,
-                   'the poses of robot1..robot%d, recorded' % args.n, alive)
+        wait_for(lambda: recorder.receiving(master, poses), STARTUP_TIMEOUT_S,
+                 'the poses of robot1..robot%d, recorded' % args.n, POLL_S, alive=alive)
         t0 = time.monotonic()
-        wait_until(lambda: time.monotonic() - t0 >= args.duration, args.duration + 5.0,
-                   'the end of the run', alive)
+        wait_for(lambda: time.monotonic() - t0 >= args.duration, args.duration + 5.0,
+                 'the end of the run', POLL_S, alive=alive)
         if recorder.stop() != 0:
             raise HarnessError('rosbag record did not close %s (see %s)'
                                % (bag_path, recorder.log_path))
         saved, image_error = save_canvas(canvas_png)
-    except (HarnessError, rospy.ROSException) as err:
-        # wait_until blames the launch for either process: name the recorder when it was it.
+    except (HarnessError, WaitError, rospy.ROSException) as err:
+        # wait_for blames no process for an exit: name the recorder when it was it.
         failed, reason = launch, err
         if recorder.exited():
             failed, reason = recorder, 'rosbag record exited before the end of the run'

@@ -10,27 +10,14 @@ import subprocess
 import time
 
 import rosgraph
+from turtle_lite.testing import wait_for
 
-POLL_S = 0.05  # condition polling period
+POLL_S = 0.05  # condition polling period (wait_for's poll_s): the harness waits for seconds
 STOP_TIMEOUT_S = 20.0  # roslaunch needs a few seconds to stop its nodes and master
 
 
 class HarnessError(RuntimeError):
     """The convoy could not be started or did not reach an expected state."""
-
-
-def wait_until(predicate, timeout_s, what, alive=None):
-    """Polls predicate() until true; raises HarnessError naming `what` after timeout_s.
-
-    `alive` (optional) is polled too: when it returns False the wait fails at once.
-    """
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if alive is not None and not alive():
-            raise HarnessError('gave up waiting for %s: the launch exited' % what)
-        if time.monotonic() > deadline:
-            raise HarnessError('timed out after %.0f s waiting for %s' % (timeout_s, what))
-        time.sleep(POLL_S)
 
 
 def free_port():
@@ -134,5 +121,6 @@ class LaunchedConvoy(ChildProcess):
         self.started_at = time.monotonic()
         self._spawn(['roslaunch', '-p', str(self.port)] + self.launch_args)
         master = rosgraph.Master('/convoy_harness', master_uri=self.master_uri)
-        wait_until(master.is_online, 30.0, 'the master at %s' % self.master_uri, self.alive)
+        wait_for(master.is_online, 30.0, 'the master at %s' % self.master_uri, POLL_S,
+                 alive=self.alive)
         return self

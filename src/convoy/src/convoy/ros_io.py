@@ -1,26 +1,10 @@
-"""ROS glue shared by the convoy nodes: commands out as Twist, poses in, numeric parameters."""
+"""ROS glue shared by the convoy nodes: commands out as Twist, poses in."""
 import contextlib
-import math
 
 import rospy
 from geometry_msgs.msg import Twist
 
 from convoy.control import STOP, Pose2D
-
-
-class ConfigError(ValueError):
-    """A parameter is missing or invalid; the message names it, its value and the expectation."""
-
-
-def number_param(name, default, minimum, allow_minimum=True):
-    """Private float parameter ~name, finite and >= minimum (> minimum if not allow_minimum)."""
-    value = rospy.get_param('~' + name, default)
-    ok = (isinstance(value, (int, float)) and not isinstance(value, bool)
-          and math.isfinite(value) and (value >= minimum if allow_minimum else value > minimum))
-    if not ok:
-        raise ConfigError('parameter ~%s has value %r: expected a finite number %s %g'
-                          % (name, value, '>=' if allow_minimum else '>', minimum))
-    return float(value)
 
 
 def pose_from_msg(msg):

@@ -1,11 +1,11 @@
 """The lesson's move_robot: announce ready, wait for the monitor's GO, drive forward safely."""
-import math
-import sys
 import threading
 from dataclasses import dataclass
 
 import rospy
 from geometry_msgs.msg import Twist
+from turtle_lite.param_loader import load_or_exit
+from turtle_lite.params import check_number
 from turtlesim.msg import Pose
 
 from multi_sync.motion import WORLD_SIZE_M, DriveLimits, TeamPositions, decide
@@ -43,17 +43,12 @@ _RANGES = {
 
 
 def load_config(get_param=rospy.get_param):
-    """Read and check the private parameters; raise ValueError naming the bad one."""
+    """Read and check the private parameters; raise ValueError (ParamError) naming the bad one."""
     values = {}
     for name, (low, high, low_ok) in _RANGES.items():
-        value = get_param('~' + name, getattr(MoveRobotConfig, name))
-        ok = (not isinstance(value, bool) and isinstance(value, (int, float))
-              and math.isfinite(value) and value <= high and (value >= low if low_ok
-                                                               else value > low))
-        if not ok:
-            raise ValueError('parameter ~%s = %r: expected a number %s %g and <= %g'
-                             % (name, value, '>=' if low_ok else '>', low, high))
-        values[name] = float(value)
+        values[name] = check_number('~' + name,
+                                    get_param('~' + name, getattr(MoveRobotConfig, name)),
+                                    low, high, low_open=not low_ok)
     config = MoveRobotConfig(**values)
     try:
         DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
@@ -266,11 +261,7 @@ def main(argv=None):
     """rosrun multi_sync move_robot ROBOT_ID."""
     robot_id = parse_argv_or_exit(parse_robot_id, argv)
     rospy.init_node('move_robot_%d' % robot_id)
-    try:
-        config = load_config()
-    except ValueError as err:
-        rospy.logfatal(str(err))
-        sys.exit(1)
+    config = load_or_exit(load_config, 'move_robot')
     rospy.loginfo('Robot %d: %s', robot_id, config)
     MoveRobotNode(robot_id, config)
     rospy.spin()

@@ -3,6 +3,8 @@ import sys
 from dataclasses import dataclass
 
 import rospy
+from turtle_lite.param_loader import load_or_exit
+from turtle_lite.params import check_int, check_number
 from turtlesim.srv import Spawn
 
 from multi_sync.motion import team_layout
@@ -23,16 +25,10 @@ def load_config(get_param=rospy.get_param):
     size = get_param('~team_size', SpawnTeamConfig.team_size)
     first = get_param('~first_id', SpawnTeamConfig.first_id)
     wait = get_param('~wait_s', SpawnTeamConfig.wait_s)
-    if isinstance(size, bool) or not isinstance(size, int) or not 1 <= size <= MAX_ROBOTS:
-        raise ValueError('parameter ~team_size = %r: expected an integer in 1..%d'
-                         % (size, MAX_ROBOTS))
-    if isinstance(first, bool) or not isinstance(first, int) or not 0 <= first <= size:
-        raise ValueError('parameter ~first_id = %r: expected an integer in 0..team_size (%d)'
-                         % (first, size))
-    if isinstance(wait, bool) or not isinstance(wait, (int, float)) or not 0 < wait < 3600:
-        raise ValueError('parameter ~wait_s = %r: expected a number of seconds in (0, 3600)'
-                         % (wait,))
-    return SpawnTeamConfig(size, first, float(wait))
+    size = check_int('~team_size', size, 1, MAX_ROBOTS)
+    first = check_int('~first_id', first, 0, size)
+    wait = check_number('~wait_s', wait, 0.0, 3600.0, low_open=True, high_open=True)
+    return SpawnTeamConfig(size, first, wait)
 
 
 class SpawnTeam:
@@ -80,10 +76,6 @@ class SpawnTeam:
 def main():
     """rosrun multi_sync spawn_team _team_size:=N [_first_id:=1]."""
     rospy.init_node('spawn_team')
-    try:
-        config = load_config()
-    except ValueError as err:
-        rospy.logfatal(str(err))
-        sys.exit(1)
+    config = load_or_exit(load_config, 'spawn_team')
     if not SpawnTeam(config).run():
         sys.exit(1)

@@ -2,7 +2,6 @@
 import math
 
 import pytest
-
 from turtle_lite.params import ParamError, check_flag, check_int, check_number, check_text
 
 
