@@ -177,7 +177,7 @@ class TestGoToGoal(unittest.TestCase):
     def test_5_bad_gains_are_fatal(self):
         for args, words in ((['_k_rho:=-1.0'], 'k_rho must be > 0'),
                             (['_k_alpha:=2.0'], 'k_alpha must be greater than k_rho'),
-                            (['_rate_hz:=fast'], '~rate_hz has value \'fast\'')):
+                            (['_rate_hz:=fast'], '~rate_hz = \'fast\'')):
             with self.subTest(args=args):
                 tool = Tool(['rosrun', 'closed_loop_turtle', 'move_turtle_to_goal.py', *args])
                 self.addCleanup(tool.stop)

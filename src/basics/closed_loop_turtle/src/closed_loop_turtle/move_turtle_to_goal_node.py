@@ -1,12 +1,12 @@
 """ROS node of Lab 2 task two: drive the Pioneer to a goal pose (move_turtle_to_goal.py)."""
 import contextlib
-import math
-import sys
 import threading
 from dataclasses import dataclass
 
 import rospy
 from geometry_msgs.msg import Pose2D, Twist
+from turtle_lite.param_loader import get_private, load_or_exit
+from turtle_lite.params import check_number
 
 from closed_loop_turtle.go_to_goal import (
     DEFAULT_HEADING_TOLERANCE_RAD,
@@ -34,10 +34,6 @@ POSE_LOG_PERIOD_S = 1.0  # the lab logs every pose; at 62.5 Hz that floods the s
 WARN_PERIOD_S = 5.0  # throttle for repeated warnings (bad poses, no pose yet)
 
 
-class ConfigError(ValueError):
-    """A parameter is invalid; the message names it, its value and the expectation."""
-
-
 @dataclass(frozen=True)
 class ControllerConfig:
     """move_turtle_to_goal's parameters, validated."""
@@ -50,29 +46,23 @@ class ControllerConfig:
 
 
 def _number(name, default):
-    value = rospy.get_param('~' + name, default)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ConfigError('parameter ~%s has value %r: expected a finite number' % (name, value))
-    return float(value)
+    return check_number('~' + name, get_private(name, default))
 
 
 def _positive(name, default):
-    value = _number(name, default)
-    if value <= 0.0:
-        raise ConfigError('parameter ~%s has value %r: expected a number > 0' % (name, value))
-    return value
+    return check_number('~' + name, get_private(name, default), low=0.0, low_open=True)
 
 
 def load_config():
-    """Reads and validates the private parameters. Raises ConfigError."""
+    """Reads and validates the private parameters. Raises ParamError or ValueError."""
     k_rho, k_alpha, k_beta = (_number('k_rho', DEFAULT_K_RHO), _number('k_alpha', DEFAULT_K_ALPHA),
                               _number('k_beta', DEFAULT_K_BETA))
     try:
         gains = Gains(k_rho, k_alpha, k_beta)
     except ValueError as err:
-        raise ConfigError('parameters ~k_rho=%r, ~k_alpha=%r, ~k_beta=%r: %s (the lab\'s '
-                          'conditions k_rho > 0, k_beta < 0, k_alpha > k_rho)'
-                          % (k_rho, k_alpha, k_beta, err)) from None
+        raise ValueError('parameters ~k_rho=%r, ~k_alpha=%r, ~k_beta=%r: %s (the lab\'s '
+                         'conditions k_rho > 0, k_beta < 0, k_alpha > k_rho)'
+                         % (k_rho, k_alpha, k_beta, err)) from None
     return ControllerConfig(
         gains=gains,
         tolerances=Tolerances(_positive('position_tolerance', DEFAULT_POSITION_TOLERANCE_M),
@@ -201,11 +191,7 @@ def main():
     """Entry point of move_turtle_to_goal.py."""
     # anonymous=True as in the lab's controller_init ('turtle_closed_loop').
     rospy.init_node('turtle_closed_loop', anonymous=True)
-    try:
-        config = load_config()
-    except ConfigError as err:
-        rospy.logfatal('move_turtle_to_goal: %s', err)
-        sys.exit(1)
+    config = load_or_exit(load_config, 'move_turtle_to_goal')
     rospy.loginfo('move_turtle_to_goal: k_rho=%g k_alpha=%g k_beta=%g position_tolerance=%g m '
                   'heading_tolerance=%g rad max_linear=%g m/s max_angular=%g rad/s rate=%g Hz '
                   'world=%g m', config.gains.k_rho, config.gains.k_alpha, config.gains.k_beta,

@@ -1,10 +1,11 @@
 """ROS node of Lab 2 task one: the teleop's command at a quarter speed for the Pioneer."""
 import contextlib
-import sys
 from dataclasses import dataclass
 
 import rospy
 from geometry_msgs.msg import Twist
+from turtle_lite.param_loader import get_private, load_or_exit
+from turtle_lite.params import check_number
 
 from pioneer_mover.relay import DEFAULT_DIVISOR, check_divisor, scale_twist
 
@@ -20,13 +21,10 @@ class InterfaceConfig:
 
 
 def load_config():
-    """Reads and validates ~divisor. Raises ValueError naming the parameter."""
-    value = rospy.get_param('~divisor', DEFAULT_DIVISOR)
-    try:
-        return InterfaceConfig(divisor=check_divisor(value))
-    except ValueError as err:
-        raise ValueError('parameter ~divisor has value %r: expected a finite number > 0 (%s)'
-                         % (value, err)) from None
+    """Reads and validates ~divisor. Raises ParamError (a ValueError) naming the parameter."""
+    value = check_number('~divisor', get_private('divisor', DEFAULT_DIVISOR), low=0.0,
+                         low_open=True)
+    return InterfaceConfig(divisor=check_divisor(value))
 
 
 def _components(twist):
@@ -82,11 +80,7 @@ def main():
     """Entry point of pioneer_interface.py."""
     # anonymous=True as in the lab: two copies can run side by side.
     rospy.init_node('pioneer_interface', anonymous=True)
-    try:
-        config = load_config()
-    except ValueError as err:
-        rospy.logfatal('pioneer_interface: %s', err)
-        sys.exit(1)
+    config = load_or_exit(load_config, 'pioneer_interface')
     rospy.loginfo('pioneer_interface: %s -> %s divided by %g',
                   rospy.resolve_name('/turtle1/cmd_vel'), rospy.resolve_name('/pioneer/cmd_vel'),
                   config.divisor)
