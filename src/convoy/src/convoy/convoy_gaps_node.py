@@ -50,7 +50,7 @@ class ConvoyGaps:
         <robot>/pose (turtlesim/Pose, queue 1) for each robot of ~robots.
     Publishes:
         convoy_gaps (visualization_msgs/MarkerArray, every 1/~rate_hz s): per follower, in
-            ~parent_frame, namespace "gap" a text "robot2 → robot1 1.73 m" at the midpoint
+            ~parent_frame, namespace "gap" a text "robot2 -> robot1 1.73 m" at the midpoint
             and namespace "link" a line from follower to leader. Nothing for a pair until both
             poses have arrived.
     Parameters:

@@ -36,4 +36,4 @@ def gap_label(follower, leader, follower_xy, leader_xy):
     fx, fy, lx, ly = (float(v) for v in values)
     gap = math.hypot(lx - fx, ly - fy)
     return GapLabel(follower, leader, gap, 0.5 * (fx + lx), 0.5 * (fy + ly),
-                    '%s \u2192 %s %.2f m' % (follower, leader, gap))
+                    '%s -> %s %.2f m' % (follower, leader, gap))

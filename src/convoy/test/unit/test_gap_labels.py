@@ -38,7 +38,7 @@ def test_gap_label(f_xy, l_xy, gap, mid):
     assert (label.follower, label.leader) == ('robot2', 'robot1')
     assert label.gap_m == pytest.approx(gap, abs=TOL)
     assert (label.mid_x, label.mid_y) == pytest.approx(mid, abs=TOL)
-    assert label.text == 'robot2 \u2192 robot1 %.2f m' % gap
+    assert label.text == 'robot2 -> robot1 %.2f m' % gap
 
 
 @pytest.mark.parametrize('f_xy, l_xy', [
