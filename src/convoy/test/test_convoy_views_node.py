@@ -89,7 +89,7 @@ class ConvoyViewsTest(unittest.TestCase):
     def test_convoy_gaps_rejects_a_convoy_of_one(self):
         result = subprocess.run(['rosrun', 'convoy', 'convoy_gaps', '_robots:=[robot1]',
                                  '__name:=bad_convoy_gaps'], stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, universal_newlines=True,
+                                stderr=subprocess.STDOUT, text=True,
                                 timeout=START_DEADLINE_S)
         self.assertNotEqual(result.returncode, 0, result.stdout)
         self.assertIn("parameter ~robots has value ['robot1']", result.stdout)

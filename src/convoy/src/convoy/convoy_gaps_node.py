@@ -7,11 +7,11 @@ from dataclasses import dataclass
 import rospy
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
-from turtle_lite import param_checks
 from turtlesim.msg import Pose
 from visualization_msgs.msg import Marker, MarkerArray
 
 from convoy.gap_labels import chain_links, gap_label
+from turtle_lite import param_checks
 
 DEFAULT_ROBOTS = ['robot1', 'robot2', 'robot3']  # the course's convoy.launch
 TEXT_HEIGHT_M = 0.4

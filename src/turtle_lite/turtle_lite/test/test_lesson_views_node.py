@@ -120,7 +120,7 @@ class LessonViewsTest(unittest.TestCase):
             self.assertIn('Translation: [', ''.join(lines))
             frames = subprocess.run(['rosrun', 'tf2_tools', 'view_frames.py'], cwd=tmp,
                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                    universal_newlines=True, timeout=TOOL_DEADLINE_S)
+                                    text=True, timeout=TOOL_DEADLINE_S)
             self.assertEqual(frames.returncode, 0, frames.stdout)
             with open(os.path.join(tmp, 'frames.gv')) as f:
                 graph = f.read()
@@ -136,7 +136,7 @@ class LessonViewsTest(unittest.TestCase):
             with self.subTest(exe=exe, arg=arg):
                 result = subprocess.run(['rosrun', 'turtle_lite', exe, arg,
                                          '__name:=bad_' + exe], stdout=subprocess.PIPE,
-                                        stderr=subprocess.STDOUT, universal_newlines=True,
+                                        stderr=subprocess.STDOUT, text=True,
                                         timeout=TOOL_DEADLINE_S)
                 self.assertNotEqual(result.returncode, 0, result.stdout)
                 self.assertIn('parameter %s has value' % name, result.stdout)

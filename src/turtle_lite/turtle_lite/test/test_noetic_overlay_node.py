@@ -15,7 +15,6 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import textwrap
 import unittest
 
 import rospy
@@ -130,7 +129,7 @@ class NoeticOverlayTest(unittest.TestCase):
         for var in ('PYTHONPATH', 'ROS_PACKAGE_PATH', 'CMAKE_PREFIX_PATH', 'PYTHONHOME'):
             env.pop(var, None)
         return subprocess.run(['bash', '-c', script], env=env, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, universal_newlines=True,
+                              stderr=subprocess.STDOUT, text=True,
                               timeout=timeout_s)
 
     def run_sourced(self, case, tool, args):

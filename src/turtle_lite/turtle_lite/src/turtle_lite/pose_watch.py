@@ -41,7 +41,7 @@ class PoseWatch:
         """One look at the master: subscribe to new pose topics, drop the ones gone."""
         try:
             published = rospy.get_published_topics()
-        except Exception as exc:  # noqa: BLE001 - master unreachable: try again next period
+        except Exception as exc:
             rospy.logwarn_throttle(10.0, 'cannot list topics on the master: %s', exc)
             return
         found = pose_topics(published, self._namespace, self._only)

@@ -59,7 +59,8 @@ class RvizOnXvfb:
     `node_name` is rviz's node name on the master (unique: the test asks the master about it).
     """
 
-    def __init__(self, config_path, node_name='rviz_snapshot_%d' % os.getpid()):
+    def __init__(self, config_path, node_name=None):
+        node_name = node_name or 'rviz_snapshot_%d' % os.getpid()
         with open(config_path) as f:
             self.topics = display_topics(f.read())
         self.config_path = config_path
@@ -144,7 +145,8 @@ def run(argv):
     """The command line; returns the exit code."""
     parser = argparse.ArgumentParser(
         prog='rviz_snapshot', description='A PNG of rviz showing a lesson, without a display.')
-    parser.add_argument('config', help='an .rviz file, e.g. $(rospack find convoy)/rviz/convoy.rviz')
+    parser.add_argument('config',
+                        help='an .rviz file, e.g. $(rospack find convoy)/rviz/convoy.rviz')
     parser.add_argument('--out', required=True, help='the PNG to write')
     parser.add_argument('--robots', type=int, default=1,
                         help='wait until this many robots are drawn (default 1)')

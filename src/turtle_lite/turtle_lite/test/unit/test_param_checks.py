@@ -3,6 +3,7 @@
 import math
 
 import pytest
+
 from turtle_lite import param_checks
 
 

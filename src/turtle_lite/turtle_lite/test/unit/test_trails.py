@@ -10,7 +10,7 @@ from turtle_lite.world import WORLD_SIZE
 def test_arena_outline_is_the_closed_world_square():
     s = WORLD_SIZE
     assert arena_outline() == [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s), (0.0, 0.0)]
-    assert WORLD_SIZE == pytest.approx(11.088889, abs=1e-6)
+    assert pytest.approx(11.088889, abs=1e-6) == WORLD_SIZE
 
 
 @pytest.mark.parametrize('size', [0, -1.0, math.nan, math.inf, '11'])
