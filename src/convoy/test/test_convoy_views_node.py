@@ -13,7 +13,8 @@ import rospkg
 import rospy
 import rostest
 from PIL import Image
-from turtle_lite.rviz_snapshot import RvizOnXvfb, error_lines
+from turtle_lite.rviz_screen import error_lines
+from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtle_lite.testing import wait_for
 from turtle_lite.testing_tf import TfPoseCheck
 from turtlesim.msg import Pose
@@ -98,7 +99,7 @@ class ConvoyViewsTest(unittest.TestCase):
         path = os.path.join(rospkg.RosPack().get_path('convoy'), 'rviz', 'convoy.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
             rviz.wait_subscribed(RVIZ_DEADLINE_S)
-            shot = rviz.wait_lesson_drawn(robots=3, timeout_s=RVIZ_DEADLINE_S)
+            shot = rviz.wait_lesson_drawn(robots=3, labels=5, timeout_s=RVIZ_DEADLINE_S)
             Image.fromarray(shot).save(os.path.join(_results_dir(), 'convoy_rviz.png'))
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics,

@@ -10,7 +10,8 @@ import rospkg
 import rospy
 import rostest
 from PIL import Image
-from turtle_lite.rviz_snapshot import RvizOnXvfb, error_lines
+from turtle_lite.rviz_screen import error_lines
+from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtle_lite.testing_tf import TfPoseCheck
 
 ROBOTS = ('robot_0', 'robot_1', 'robot_2', 'robot_3')
@@ -40,7 +41,8 @@ class MultiSyncViewsTest(unittest.TestCase):
         path = os.path.join(rospkg.RosPack().get_path('multi_sync'), 'rviz', 'multi_sync.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
             rviz.wait_subscribed(RVIZ_DEADLINE_S)
-            shot = rviz.wait_lesson_drawn(robots=len(ROBOTS), timeout_s=RVIZ_DEADLINE_S)
+            shot = rviz.wait_lesson_drawn(robots=len(ROBOTS), labels=len(ROBOTS),
+                                          timeout_s=RVIZ_DEADLINE_S)
             Image.fromarray(shot).save(os.path.join(_results_dir(), 'multi_sync_rviz.png'))
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics, ['/lesson_markers', '/tf', '/tf_static'])

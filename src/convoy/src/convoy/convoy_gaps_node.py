@@ -14,7 +14,9 @@ from convoy.gap_labels import chain_links, gap_label
 from turtle_lite import param_checks
 
 DEFAULT_ROBOTS = ['robot1', 'robot2', 'robot3']  # the course's convoy.launch
-TEXT_HEIGHT_M = 0.4
+TEXT_HEIGHT_M = 0.3
+# Below the midpoint: lesson_markers writes the robots' names above them.
+TEXT_OFFSET_Y_M = -0.35
 LINE_WIDTH_M = 0.03
 TEXT_RGBA = (1.0, 1.0, 1.0, 1.0)
 LINE_RGBA = (1.0, 1.0, 1.0, 0.5)
@@ -95,7 +97,7 @@ class ConvoyGaps:
                 rospy.logwarn_throttle(WARN_PERIOD_S, 'convoy_gaps: %s', err)
                 continue
             text = self._marker('gap', marker_id, Marker.TEXT_VIEW_FACING, TEXT_RGBA)
-            text.pose.position.x, text.pose.position.y = label.mid_x, label.mid_y
+            text.pose.position.x, text.pose.position.y = label.mid_x, label.mid_y + TEXT_OFFSET_Y_M
             text.scale.z = TEXT_HEIGHT_M
             text.text = label.text
             link = self._marker('link', marker_id, Marker.LINE_LIST, LINE_RGBA)

@@ -12,7 +12,8 @@ import rospy
 import rostest
 from PIL import Image
 from sim_support import POSE_TOL, START_DEADLINE_S, WORLD, wait_for
-from turtle_lite.rviz_snapshot import RvizOnXvfb, error_lines
+from turtle_lite.rviz_screen import error_lines
+from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtle_lite.testing_tf import TfPoseCheck
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
 from visualization_msgs.msg import Marker, MarkerArray
@@ -146,7 +147,7 @@ class LessonViewsTest(unittest.TestCase):
                             'turtlesim.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
             rviz.wait_subscribed(START_DEADLINE_S * 2)
-            shot = rviz.wait_lesson_drawn(robots=2, timeout_s=START_DEADLINE_S * 2)
+            shot = rviz.wait_lesson_drawn(robots=2, labels=2, timeout_s=START_DEADLINE_S * 2)
             Image.fromarray(shot).save(os.path.join(_results_dir(), 'turtlesim_rviz.png'))
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics, ['/lesson_markers', '/tf', '/tf_static'])

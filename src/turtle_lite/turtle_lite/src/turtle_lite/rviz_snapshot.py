@@ -3,8 +3,8 @@
 Used by the rviz tests and by anyone who wants a picture of a running lesson without a display:
     rosrun turtle_lite rviz_snapshot $(rospack find convoy)/rviz/convoy.rviz --out convoy.png
 It starts Xvfb on a free display and rviz on it with Mesa's software renderer (llvmpipe), waits
-until rviz subscribes to every topic the file names and the picture shows the arena and the
-robots (lesson_markers' colours), saves the screen, and stops both. Needs a running master,
+until rviz subscribes to every topic the file names and its view shows the arena, the robots
+and their labels (rviz_screen), saves the screen, and stops both. Needs a running master,
 and the lesson's pose_to_tf and lesson_markers.
 """
 
@@ -19,38 +19,11 @@ import rosgraph
 from PIL import Image, ImageGrab
 
 from turtle_lite.rviz_config import display_topics
+from turtle_lite.rviz_screen import shows_lesson
 from turtle_lite.testing import wait_for
-from turtle_lite.trails import ARENA_RGB, PALETTE
 
 SCREEN = (1024, 800)
 START_DEADLINE_S = 60.0  # rviz with software GL on a loaded 2-core machine
-COLOUR_TOLERANCE = 40  # per channel, 0..255: rviz shades and blends what it draws
-MIN_ARENA_PIXELS = 300  # the outline is ~4 x 600 px long, a few px wide
-MIN_ROBOT_PIXELS = 30  # one arrow is ~45 x 8 px
-#: Log lines that are not errors of the file or the lesson: Debian's rviz asks rospack for
-#: OGRE media of the `media_export` package, which Debian does not ship (nothing uses them).
-KNOWN_NOISE = ('no such package media_export', '[librospack]: error while executing command')
-
-
-def colour_pixels(image, rgb, tolerance=COLOUR_TOLERANCE):
-    """How many pixels of an H x W x 3 uint8 array are within tolerance of rgb (0..1 floats)."""
-    target = np.array([round(255 * c) for c in rgb], dtype=np.int16)
-    return int((np.abs(image.astype(np.int16) - target) <= tolerance).all(axis=2).sum())
-
-
-def shows_lesson(image, robots=1):
-    """True when an RGB array shows the arena outline and at least `robots` robots' colours."""
-    if colour_pixels(image, ARENA_RGB) < MIN_ARENA_PIXELS:
-        return False
-    seen = sum(colour_pixels(image, rgb) >= MIN_ROBOT_PIXELS for rgb in PALETTE)
-    return seen >= robots
-
-
-def error_lines(log_text):
-    """The lines of an rviz log that report an error, known Debian noise left out."""
-    return [line for line in log_text.splitlines()
-            if ('ERROR' in line or 'Error' in line or 'FATAL' in line)
-            and not any(noise in line for noise in KNOWN_NOISE)]
 
 
 class RvizOnXvfb:
@@ -123,20 +96,21 @@ class RvizOnXvfb:
         wait_for(lambda: self._alive_and(lambda: not self.missing_topics()), timeout_s,
                  'rviz subscribed to %s' % ', '.join(self.topics))
 
-    def wait_lesson_drawn(self, robots=1, timeout_s=START_DEADLINE_S):
-        """Waits until the screen shows the arena and `robots` robot colours; returns it."""
+    def wait_lesson_drawn(self, robots, labels, timeout_s=START_DEADLINE_S):
+        """Waits until the screen shows the arena, `robots` robots and `labels` texts (names,
+        gap labels); returns the screenshot."""
         def drawn():
             shot = self.grab()
-            return [shot] if shows_lesson(shot, robots) else None
+            return [shot] if shows_lesson(shot, robots, labels) else None
         return wait_for(lambda: self._alive_and(drawn), timeout_s,
-                        'rviz drawing the arena and %d robot(s)' % robots)[0]
+                        'rviz drawing the arena, %d robot(s) and %d label(s)' % (robots, labels))[0]
 
 
-def snapshot(config_path, out_path, robots=1, timeout_s=START_DEADLINE_S):
+def snapshot(config_path, out_path, robots, labels, timeout_s=START_DEADLINE_S):
     """Saves a PNG of rviz showing config_path on the running lesson; returns the rviz log."""
     with RvizOnXvfb(config_path) as rviz:
         rviz.wait_subscribed(timeout_s)
-        shot = rviz.wait_lesson_drawn(robots, timeout_s)
+        shot = rviz.wait_lesson_drawn(robots, labels, timeout_s)
         Image.fromarray(shot).save(out_path)
         return rviz.log()
 
@@ -150,13 +124,16 @@ def run(argv):
     parser.add_argument('--out', required=True, help='the PNG to write')
     parser.add_argument('--robots', type=int, default=1,
                         help='wait until this many robots are drawn (default 1)')
+    parser.add_argument('--labels', type=int, default=None,
+                        help='and this many texts: names, gap labels (default: --robots)')
     parser.add_argument('--timeout', type=float, default=START_DEADLINE_S,
                         help='seconds to wait for rviz (default %(default)s)')
     args = parser.parse_args(argv)
     if not os.path.isfile(args.config):
         parser.error('no such file: %s' % args.config)
-    if args.robots < 0 or args.timeout <= 0:
-        parser.error('--robots must be >= 0 and --timeout > 0')
+    labels = args.robots if args.labels is None else args.labels
+    if args.robots < 0 or labels < 0 or args.timeout <= 0:
+        parser.error('--robots and --labels must be >= 0 and --timeout > 0')
     try:
         rosgraph.Master('/rviz_snapshot').getPid()
     except OSError:
@@ -164,7 +141,7 @@ def run(argv):
               % rosgraph.get_master_uri(), file=sys.stderr)
         return 1
     try:
-        snapshot(args.config, args.out, args.robots, args.timeout)
+        snapshot(args.config, args.out, args.robots, labels, args.timeout)
     except (AssertionError, ValueError) as err:
         print('rviz_snapshot: %s' % err, file=sys.stderr)
         return 1
