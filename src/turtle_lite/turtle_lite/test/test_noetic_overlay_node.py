@@ -84,6 +84,10 @@ class NoeticOverlayTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_noetic_overlay')
+        # The nodes report through these parameters: none may be left from an earlier run on
+        # the same master (rostest starts a fresh one, a developer's roscore does not).
+        if rospy.has_param(PARAM_NS):
+            rospy.delete_param(PARAM_NS)
         cls.tmp = tempfile.mkdtemp(prefix='noetic_overlay_')
         cls.underlay = _underlay_devel()
         # A python that cannot import rospy: a venv of Debian's python3 without its dist-packages.
