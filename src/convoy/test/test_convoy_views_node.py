@@ -5,7 +5,6 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 import threading
 import unittest
 
@@ -16,7 +15,7 @@ from PIL import Image
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtle_lite.testing import wait_for
-from turtle_lite.testing_tf import TfPoseCheck
+from turtle_lite.testing_views import TfPoseCheck, results_dir
 from turtlesim.msg import Pose
 from visualization_msgs.msg import MarkerArray
 
@@ -26,13 +25,6 @@ SETTLE_DEADLINE_S = 120.0  # followers drive from (0, 0) to within 1.5 m of robo
 RVIZ_DEADLINE_S = 120.0  # rviz with software GL
 LABEL_TOL_M = 0.01  # the label's two decimals
 
-
-def _results_dir():
-    """Where rostest writes this test's XML (its --gtest_output argument): screenshots go there."""
-    for arg in sys.argv:
-        if arg.startswith('--gtest_output=xml:'):
-            return os.path.dirname(arg[len('--gtest_output=xml:'):])
-    return os.environ.get('ROS_TEST_RESULTS_DIR', tempfile.gettempdir())
 
 
 class ConvoyViewsTest(unittest.TestCase):
@@ -100,7 +92,7 @@ class ConvoyViewsTest(unittest.TestCase):
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
             rviz.wait_subscribed(RVIZ_DEADLINE_S)
             shot = rviz.wait_lesson_drawn(robots=3, labels=5, timeout_s=RVIZ_DEADLINE_S)
-            Image.fromarray(shot).save(os.path.join(_results_dir(), 'convoy_rviz.png'))
+            Image.fromarray(shot).save(os.path.join(results_dir(), 'convoy_rviz.png'))
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics,
                              ['/convoy_gaps', '/lesson_markers', '/tf', '/tf_static'])

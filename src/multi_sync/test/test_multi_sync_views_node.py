@@ -3,7 +3,6 @@
 
 import os
 import sys
-import tempfile
 import unittest
 
 import rospkg
@@ -12,19 +11,12 @@ import rostest
 from PIL import Image
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
-from turtle_lite.testing_tf import TfPoseCheck
+from turtle_lite.testing_views import TfPoseCheck, results_dir
 
 ROBOTS = ('robot_0', 'robot_1', 'robot_2', 'robot_3')
 START_DEADLINE_S = 60.0  # roslaunch of the team, rosservice spawns, on a loaded machine
 RVIZ_DEADLINE_S = 120.0  # rviz with software GL
 
-
-def _results_dir():
-    """Where rostest writes this test's XML (its --gtest_output argument): screenshots go there."""
-    for arg in sys.argv:
-        if arg.startswith('--gtest_output=xml:'):
-            return os.path.dirname(arg[len('--gtest_output=xml:'):])
-    return os.environ.get('ROS_TEST_RESULTS_DIR', tempfile.gettempdir())
 
 
 class MultiSyncViewsTest(unittest.TestCase):
@@ -43,7 +35,7 @@ class MultiSyncViewsTest(unittest.TestCase):
             rviz.wait_subscribed(RVIZ_DEADLINE_S)
             shot = rviz.wait_lesson_drawn(robots=len(ROBOTS), labels=len(ROBOTS),
                                           timeout_s=RVIZ_DEADLINE_S)
-            Image.fromarray(shot).save(os.path.join(_results_dir(), 'multi_sync_rviz.png'))
+            Image.fromarray(shot).save(os.path.join(results_dir(), 'multi_sync_rviz.png'))
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics, ['/lesson_markers', '/tf', '/tf_static'])
             self.assertEqual(error_lines(rviz.log()), [], rviz.log())

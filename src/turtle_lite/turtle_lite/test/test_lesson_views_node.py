@@ -14,7 +14,7 @@ from PIL import Image
 from sim_support import POSE_TOL, START_DEADLINE_S, WORLD, wait_for
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
-from turtle_lite.testing_tf import TfPoseCheck
+from turtle_lite.testing_views import TfPoseCheck, results_dir
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
 from visualization_msgs.msg import Marker, MarkerArray
 
@@ -26,13 +26,6 @@ def _subscribers(topic, node):
     _pubs, subs, _srvs = rosgraph.Master('/test_lesson_views').getSystemState()
     return any(t == topic and node in nodes for t, nodes in subs)
 
-
-def _results_dir():
-    """Where rostest writes this test's XML (its --gtest_output argument): screenshots go there."""
-    for arg in sys.argv:
-        if arg.startswith('--gtest_output=xml:'):
-            return os.path.dirname(arg[len('--gtest_output=xml:'):])
-    return os.environ.get('ROS_TEST_RESULTS_DIR', tempfile.gettempdir())
 
 
 class LessonViewsTest(unittest.TestCase):
@@ -148,7 +141,7 @@ class LessonViewsTest(unittest.TestCase):
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
             rviz.wait_subscribed(START_DEADLINE_S * 2)
             shot = rviz.wait_lesson_drawn(robots=2, labels=2, timeout_s=START_DEADLINE_S * 2)
-            Image.fromarray(shot).save(os.path.join(_results_dir(), 'turtlesim_rviz.png'))
+            Image.fromarray(shot).save(os.path.join(results_dir(), 'turtlesim_rviz.png'))
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics, ['/lesson_markers', '/tf', '/tf_static'])
             self.assertEqual(error_lines(rviz.log()), [], rviz.log())

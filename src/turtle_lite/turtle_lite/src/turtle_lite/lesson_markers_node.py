@@ -11,7 +11,6 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 from turtle_lite import param_checks
 from turtle_lite.pose_watch import PoseWatch
-from turtle_lite.team_frames import normalize_namespace
 from turtle_lite.trails import ARENA_RGB, Trail, arena_outline, robot_color
 
 LINE_WIDTH_M = 0.05
@@ -35,14 +34,9 @@ class LessonMarkersConfig:
 
 def load_config():
     """Reads and validates the private parameters. Raises ValueError naming the bad one."""
-    namespace = rospy.get_param('~namespace', '/')
-    try:
-        namespace = normalize_namespace(namespace)
-    except ValueError:
-        param_checks.name('~namespace', namespace)
     return LessonMarkersConfig(
         parent_frame=param_checks.name('~parent_frame', rospy.get_param('~parent_frame', 'world')),
-        namespace=namespace,
+        namespace=param_checks.namespace('~namespace', rospy.get_param('~namespace', '/')),
         trail_points=param_checks.integer('~trail_points', rospy.get_param('~trail_points', 600),
                                           2, 100000),
         trail_spacing_m=param_checks.number(

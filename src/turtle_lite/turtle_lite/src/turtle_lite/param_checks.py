@@ -7,6 +7,8 @@ value and what was expected: the message of the node's logfatal.
 
 import math
 
+from turtle_lite.team_frames import normalize_namespace
+
 
 def _fail(name, value, expected):
     raise ValueError('parameter %s has value %r: expected %s' % (name, value, expected))
@@ -43,3 +45,11 @@ def name_list(name, value, min_length=0):
         _fail(name, value, 'a list of %sdistinct names, e.g. [robot1, robot2]'
               % ('%d or more ' % min_length if min_length else ''))
     return tuple(v.strip() for v in value)
+
+
+def namespace(name, value):
+    """A namespace such as /, /sim or sim/, as an absolute namespace ending in '/'."""
+    try:
+        return normalize_namespace(value)
+    except ValueError:
+        _fail(name, value, 'a namespace such as / or /turtlesim1')

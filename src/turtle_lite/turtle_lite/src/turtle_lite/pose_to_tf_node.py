@@ -10,7 +10,7 @@ from geometry_msgs.msg import TransformStamped
 
 from turtle_lite import param_checks
 from turtle_lite.pose_watch import PoseWatch
-from turtle_lite.team_frames import normalize_namespace, pose_to_transform
+from turtle_lite.team_frames import pose_to_transform
 
 WARN_PERIOD_S = 5.0
 
@@ -28,14 +28,9 @@ class PoseToTfConfig:
 
 def load_config():
     """Reads and validates the private parameters. Raises ValueError naming the bad one."""
-    namespace = rospy.get_param('~namespace', '/')
-    try:
-        namespace = normalize_namespace(namespace)
-    except ValueError:
-        param_checks.name('~namespace', namespace)  # raises with the parameter's name
     return PoseToTfConfig(
         parent_frame=param_checks.name('~parent_frame', rospy.get_param('~parent_frame', 'world')),
-        namespace=namespace,
+        namespace=param_checks.namespace('~namespace', rospy.get_param('~namespace', '/')),
         turtles=param_checks.name_list('~turtles', rospy.get_param('~turtles', [])),
         discovery_period_s=param_checks.number(
             '~discovery_period_s', rospy.get_param('~discovery_period_s', 0.5), 0.0, False),

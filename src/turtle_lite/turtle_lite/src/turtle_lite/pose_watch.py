@@ -54,15 +54,19 @@ class PoseWatch:
             for topic, frame in added.items():
                 self._topics[topic] = frame
                 self._subs[topic] = rospy.Subscriber(
-                    topic, Pose, self._callback, callback_args=frame, queue_size=QUEUE_SIZE)
+                    topic, Pose, self._callback, callback_args=(topic, frame),
+                    queue_size=QUEUE_SIZE)
         for frame in gone:
             rospy.loginfo('turtle %s gone', frame)
             self._on_gone(frame)
         for topic, frame in sorted(added.items()):
             rospy.loginfo('turtle %s: following %s', frame, topic)
 
-    def _callback(self, msg, frame):
-        self._on_pose(frame, msg, rospy.Time.now())
+    def _callback(self, msg, topic_frame):
+        topic, frame = topic_frame
+        # A pose already in flight when the turtle was dropped must not bring it back.
+        if topic in self._topics:  # a dict lookup: atomic under the GIL, no lock needed
+            self._on_pose(frame, msg, rospy.Time.now())
 
     def shutdown(self):
         self._timer.shutdown()

@@ -62,3 +62,14 @@ def test_name_list_accepts(value, min_length, expected):
 def test_name_list_rejects(value, min_length):
     with pytest.raises(ValueError, match='parameter ~robots has value'):
         param_checks.name_list('~robots', value, min_length)
+
+
+@pytest.mark.parametrize('value, expected', [('/', '/'), ('sim', '/sim/'), ('/a/b/', '/a/b/')])
+def test_namespace_accepts(value, expected):
+    assert param_checks.namespace('~namespace', value) == expected
+
+
+@pytest.mark.parametrize('value', [3, None, ['/']])
+def test_namespace_rejects(value):
+    with pytest.raises(ValueError, match='parameter ~namespace has value'):
+        param_checks.namespace('~namespace', value)

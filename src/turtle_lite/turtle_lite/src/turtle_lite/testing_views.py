@@ -1,9 +1,13 @@
-"""Test support: does tf say where the turtles are? (rostest nodes of every package).
+"""Test support for the tf and rviz views (rostest nodes of every package).
 
-Compares tf's newest world -> <frame> transform with the newest pose on the turtle's pose topic.
+TfPoseCheck compares tf's newest world -> <frame> transform with the newest pose on the
+turtle's pose topic; results_dir() is where a test keeps its screenshots.
 """
 
 import math
+import os
+import sys
+import tempfile
 import threading
 
 import rospy
@@ -14,6 +18,14 @@ from turtle_lite.testing import wait_for
 
 POSITION_TOL_M = 1e-4  # float32 poses through float64 transforms: far below a pose's change
 YAW_TOL_RAD = 1e-4
+
+
+def results_dir():
+    """Where rostest writes this test's XML (its --gtest_output argument): screenshots go there."""
+    for arg in sys.argv:
+        if arg.startswith('--gtest_output=xml:'):
+            return os.path.dirname(arg[len('--gtest_output=xml:'):])
+    return os.environ.get('ROS_TEST_RESULTS_DIR', tempfile.gettempdir())
 
 
 def yaw_of(q):
