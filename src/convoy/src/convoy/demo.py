@@ -3,8 +3,9 @@
 rosrun convoy convoy_demo --out DIR [--duration S] [--n N] [--gui]
 Starts the convoy launch file (convoy.launch for 3 robots, convoy_chain.launch otherwise) with
 its own master on a free port, records every pose and cmd_vel with `rosbag record` for a fixed
-time, saves the simulator's canvas, stops everything, then makes the summary table and the
-trail and gap plots from the bag with bag_report's code.
+time, saves the simulator's canvas and a picture of rviz showing the convoy (rviz/convoy.rviz on
+a private Xvfb), stops everything, then makes the summary table and the trail and gap plots
+from the bag with bag_report's code.
 """
 import argparse
 import os
@@ -12,7 +13,9 @@ import sys
 import time
 
 import rosgraph
+import rospkg
 import rospy
+from turtle_lite.rviz_snapshot import snapshot
 from turtle_lite.srv import SaveImage
 from turtle_lite.testing import WaitError, wait_for
 
@@ -58,6 +61,17 @@ def save_canvas(path):
         return None, str(err)
 
 
+def save_rviz(path, n_robots):
+    """rviz's view of the running convoy as a PNG; returns (path written, None) or (None, error)."""
+    try:
+        config = os.path.join(rospkg.RosPack().get_path('convoy'), 'rviz', 'convoy.rviz')
+        # Labels: every robot's name and every follower's gap.
+        snapshot(config, path, robots=n_robots, labels=2 * n_robots - 1)
+        return path, None
+    except (AssertionError, OSError, ValueError, rospkg.ResourceNotFound) as err:
+        return None, str(err)
+
+
 def running(launch, recorder):
     """An alive check for wait_for: the launch and the bag recorder are both still up."""
     return lambda: launch.alive() and recorder.alive()
@@ -68,7 +82,9 @@ def run(args):
     os.makedirs(args.out, exist_ok=True)
     canvas_png = os.path.join(args.out, 'convoy_canvas.png')
     bag_path = os.path.join(args.out, 'convoy.bag')
-    launch = LaunchedConvoy(launch_for(args.n, args.gui), os.path.join(args.out, 'roslaunch.log'))
+    rviz_png = os.path.join(args.out, 'convoy_rviz.png')
+    launch = LaunchedConvoy(launch_for(args.n, args.gui, markers=True),
+                            os.path.join(args.out, 'roslaunch.log'))
     recorder = BagRecorder(bag_path, convoy_topics(args.n), os.path.join(args.out, 'rosbag.log'))
     wall_start = time.monotonic()
     try:
@@ -89,6 +105,7 @@ def run(args):
             raise HarnessError('rosbag record did not close %s (see %s)'
                                % (bag_path, recorder.log_path))
         saved, image_error = save_canvas(canvas_png)
+        rviz_saved, rviz_error = save_rviz(rviz_png, args.n)
     except (HarnessError, WaitError, rospy.ROSException) as err:
         # wait_for blames no process for an exit: name the recorder when it was it.
         failed, reason = launch, err
@@ -114,12 +131,18 @@ def run(args):
         return 1
     trails_png, gaps_png = write_figures(report, args.out, 'convoy')
     print('\n' + '\n'.join(table_lines(report)))
-    print('\nbag:    %s\ntrails: %s\ngaps:   %s\ncanvas: %s\nlogs:   %s\nwall time: %.1f s'
-          % (bag_path, trails_png, gaps_png, saved or '(not written)', launch.log_path,
+    print('\nbag:    %s\ntrails: %s\ngaps:   %s\ncanvas: %s\nrviz:   %s\nlogs:   %s\n'
+          'wall time: %.1f s'
+          % (bag_path, trails_png, gaps_png, saved or '(not written)',
+             rviz_saved or '(not written)', launch.log_path,
              time.monotonic() - wall_start))
     if image_error:
         print('convoy_demo: FAILED: could not save the canvas through /turtlesim/save_image: %s'
               % image_error, file=sys.stderr)
+        return 1
+    if rviz_error:
+        print('convoy_demo: FAILED: could not take the rviz picture: %s' % rviz_error,
+              file=sys.stderr)
         return 1
     return 0
 

@@ -27,12 +27,15 @@ def free_port():
         return sock.getsockname()[1]
 
 
-def launch_for(n_robots, gui=False):
-    """roslaunch arguments for an autopilot convoy of n_robots (the course file for 3)."""
-    gui_arg = 'gui:=%s' % ('true' if gui else 'false')
+def launch_for(n_robots, gui=False, markers=False):
+    """roslaunch arguments for an autopilot convoy of n_robots (the course file for 3).
+
+    markers: also tf and what the rviz view draws (the demo's rviz picture).
+    """
+    extra = ['gui:=%s' % ('true' if gui else 'false')] + (['markers:=true'] if markers else [])
     if n_robots == 3:
-        return ['convoy', 'convoy.launch', 'autopilot:=true', gui_arg]
-    return ['convoy', 'convoy_chain.launch', 'n:=%d' % n_robots, 'autopilot:=true', gui_arg]
+        return ['convoy', 'convoy.launch', 'autopilot:=true'] + extra
+    return ['convoy', 'convoy_chain.launch', 'n:=%d' % n_robots, 'autopilot:=true'] + extra
 
 
 def convoy_node_names(n_robots):

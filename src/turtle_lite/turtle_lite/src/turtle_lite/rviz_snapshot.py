@@ -1,0 +1,153 @@
+"""rviz_snapshot: rviz with a configuration file on its own Xvfb screen, and a PNG of it.
+
+Used by the rviz tests and by anyone who wants a picture of a running lesson without a display:
+    rosrun turtle_lite rviz_snapshot $(rospack find convoy)/rviz/convoy.rviz --out convoy.png
+It starts Xvfb on a free display and rviz on it with Mesa's software renderer (llvmpipe), waits
+until rviz subscribes to every topic the file names and its view shows the arena, the robots
+and their labels (rviz_screen), saves the screen, and stops both. Needs a running master,
+and the lesson's pose_to_tf and lesson_markers.
+"""
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+import rosgraph
+from PIL import Image, ImageGrab
+
+from turtle_lite.rviz_config import display_topics
+from turtle_lite.rviz_screen import shows_lesson
+from turtle_lite.testing import wait_for
+
+SCREEN = (1024, 800)
+START_DEADLINE_S = 60.0  # rviz with software GL on a loaded 2-core machine
+
+
+class RvizOnXvfb:
+    """rviz showing `config_path` on a private Xvfb screen; a context manager.
+
+    `node_name` is rviz's node name on the master (unique: the test asks the master about it).
+    """
+
+    def __init__(self, config_path, node_name=None):
+        node_name = node_name or 'rviz_snapshot_%d' % os.getpid()
+        with open(config_path) as f:
+            self.topics = display_topics(f.read())
+        self.config_path = config_path
+        self.node_name = '/' + node_name.lstrip('/')
+        self._log = tempfile.TemporaryFile()  # noqa: SIM115 - closed in close()
+        # -displayfd: Xvfb picks a free display number and writes it to us.
+        self._xvfb = subprocess.Popen(
+            ['Xvfb', '-displayfd', '1', '-screen', '0', '%dx%dx24' % SCREEN, '-nolisten', 'tcp'],
+            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+        self.display = ':' + self._xvfb.stdout.readline().decode().strip()
+        env = dict(os.environ, DISPLAY=self.display, LIBGL_ALWAYS_SOFTWARE='1')
+        self._rviz = subprocess.Popen(
+            ['rviz', '-d', config_path, '__name:=' + node_name.lstrip('/')],
+            env=env, stdout=self._log, stderr=subprocess.STDOUT)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        for proc in (self._rviz, self._xvfb):
+            if proc.poll() is None:
+                proc.terminate()
+                try:
+                    proc.wait(10)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+        self._log.close()
+
+    def log(self):
+        self._log.seek(0)
+        return self._log.read().decode(errors='replace')
+
+    def running(self):
+        return self._rviz.poll() is None
+
+    def subscriptions(self):
+        """The topics rviz's node subscribes to, as the master reports them."""
+        _pubs, subs, _srvs = rosgraph.Master('/rviz_snapshot').getSystemState()
+        return sorted(topic for topic, nodes in subs if self.node_name in nodes)
+
+    def missing_topics(self):
+        """Topics the file names that rviz does not (yet) subscribe to."""
+        return sorted(set(self.topics) - set(self.subscriptions()))
+
+    def grab(self):
+        """The screen as an H x W x 3 uint8 array."""
+        return np.asarray(ImageGrab.grab(xdisplay=self.display).convert('RGB'))
+
+    def _alive_and(self, check):
+        if not self.running():
+            raise AssertionError('rviz exited (code %s):\n%s' % (self._rviz.returncode,
+                                                                  self.log()[-2000:]))
+        return check()
+
+    def wait_subscribed(self, timeout_s=START_DEADLINE_S):
+        wait_for(lambda: self._alive_and(lambda: not self.missing_topics()), timeout_s,
+                 'rviz subscribed to %s' % ', '.join(self.topics))
+
+    def wait_lesson_drawn(self, robots, labels, timeout_s=START_DEADLINE_S):
+        """Waits until the screen shows the arena, `robots` robots and `labels` texts (names,
+        gap labels); returns the screenshot."""
+        def drawn():
+            shot = self.grab()
+            return [shot] if shows_lesson(shot, robots, labels) else None
+        return wait_for(lambda: self._alive_and(drawn), timeout_s,
+                        'rviz drawing the arena, %d robot(s) and %d label(s)' % (robots, labels))[0]
+
+
+def snapshot(config_path, out_path, robots, labels, timeout_s=START_DEADLINE_S):
+    """Saves a PNG of rviz showing config_path on the running lesson; returns the rviz log."""
+    with RvizOnXvfb(config_path) as rviz:
+        rviz.wait_subscribed(timeout_s)
+        shot = rviz.wait_lesson_drawn(robots, labels, timeout_s)
+        Image.fromarray(shot).save(out_path)
+        return rviz.log()
+
+
+def run(argv):
+    """The command line; returns the exit code."""
+    parser = argparse.ArgumentParser(
+        prog='rviz_snapshot', description='A PNG of rviz showing a lesson, without a display.')
+    parser.add_argument('config',
+                        help='an .rviz file, e.g. $(rospack find convoy)/rviz/convoy.rviz')
+    parser.add_argument('--out', required=True, help='the PNG to write')
+    parser.add_argument('--robots', type=int, default=1,
+                        help='wait until this many robots are drawn (default 1)')
+    parser.add_argument('--labels', type=int, default=None,
+                        help='and this many texts: names, gap labels (default: --robots)')
+    parser.add_argument('--timeout', type=float, default=START_DEADLINE_S,
+                        help='seconds to wait for rviz (default %(default)s)')
+    args = parser.parse_args(argv)
+    if not os.path.isfile(args.config):
+        parser.error('no such file: %s' % args.config)
+    labels = args.robots if args.labels is None else args.labels
+    if args.robots < 0 or labels < 0 or args.timeout <= 0:
+        parser.error('--robots and --labels must be >= 0 and --timeout > 0')
+    try:
+        rosgraph.Master('/rviz_snapshot').getPid()
+    except OSError:
+        print('rviz_snapshot: no master at %s: start the lesson first'
+              % rosgraph.get_master_uri(), file=sys.stderr)
+        return 1
+    try:
+        snapshot(args.config, args.out, args.robots, labels, args.timeout)
+    except (AssertionError, ValueError) as err:
+        print('rviz_snapshot: %s' % err, file=sys.stderr)
+        return 1
+    print(os.path.abspath(args.out))
+    return 0
+
+
+def main():
+    sys.exit(run(sys.argv[1:]))

@@ -1,0 +1,75 @@
+"""Unit tests of turtle_lite.trails: the arena outline and bounded trails."""
+
+import math
+
+import pytest
+from turtle_lite.trails import ARENA_RGB, PALETTE, Trail, arena_outline, robot_color
+from turtle_lite.world import WORLD_SIZE
+
+
+def test_arena_outline_is_the_closed_world_square():
+    s = WORLD_SIZE
+    assert arena_outline() == [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s), (0.0, 0.0)]
+    assert pytest.approx(11.088889, abs=1e-6) == WORLD_SIZE
+
+
+@pytest.mark.parametrize('size', [0, -1.0, math.nan, math.inf, '11'])
+def test_arena_outline_rejects_bad_sizes(size):
+    with pytest.raises(ValueError, match='arena size'):
+        arena_outline(size)
+
+
+@pytest.mark.parametrize('points, spacing, expected', [
+    ([(0, 0), (0.01, 0), (0.1, 0)], 0.05, [(0, 0), (0.1, 0)]),      # too close: skipped
+    ([(0, 0), (0, 0), (0, 0)], 0.0, [(0, 0), (0, 0), (0, 0)]),        # spacing 0 keeps all
+    ([(0, 0), (1, 0), (2, 0), (3, 0), (4, 0)], 0.5, [(2, 0), (3, 0), (4, 0)]),  # bounded: 3
+    ([(5, 5)], 1.0, [(5, 5)]),
+])
+def test_trail_keeps_spaced_recent_points(points, spacing, expected):
+    trail = Trail(3, spacing)
+    for x, y in points:
+        trail.add(x, y)
+    assert trail.points() == expected
+    assert len(trail) == len(expected)
+
+
+def test_trail_add_reports_whether_it_appended():
+    trail = Trail(10, 0.1)
+    assert trail.add(1.0, 1.0) is True
+    assert trail.add(1.05, 1.0) is False
+    assert trail.add(1.2, 1.0) is True
+
+
+@pytest.mark.parametrize('max_points, spacing, message', [
+    (1, 0.1, 'trail length'), (2.0, 0.1, 'trail length'), (True, 0.1, 'trail length'),
+    (10, -0.1, 'trail spacing'), (10, math.nan, 'trail spacing'), (10, None, 'trail spacing'),
+])
+def test_trail_rejects_bad_settings(max_points, spacing, message):
+    with pytest.raises(ValueError, match=message):
+        Trail(max_points, spacing)
+
+
+@pytest.mark.parametrize('x, y', [(math.nan, 0.0), (0.0, math.inf)])
+def test_trail_refuses_non_finite_points(x, y):
+    trail = Trail(10, 0.0)
+    with pytest.raises(ValueError, match='trail point'):
+        trail.add(x, y)
+    assert trail.points() == []
+
+
+@pytest.mark.parametrize('index, expected', [
+    (0, PALETTE[0]), (1, PALETTE[1]), (len(PALETTE), PALETTE[0]), (len(PALETTE) + 2, PALETTE[2]),
+])
+def test_robot_color_cycles(index, expected):
+    assert robot_color(index) == expected
+
+
+def test_palette_is_distinct_and_not_the_arena():
+    assert len(set(PALETTE)) == len(PALETTE)
+    assert ARENA_RGB not in PALETTE
+
+
+@pytest.mark.parametrize('index', [-1, 1.0, None, True])
+def test_robot_color_rejects_bad_index(index):
+    with pytest.raises(ValueError, match='robot index'):
+        robot_color(index)
