@@ -85,7 +85,7 @@ class ConvoyViewsTest(unittest.TestCase):
                                 stderr=subprocess.STDOUT, text=True,
                                 timeout=START_DEADLINE_S)
         self.assertNotEqual(result.returncode, 0, result.stdout)
-        self.assertIn("parameter ~robots has value ['robot1']", result.stdout)
+        self.assertIn("parameter ~robots = ['robot1']", result.stdout)
 
     def test_rviz_shows_the_convoy_view(self):
         path = os.path.join(rospkg.RosPack().get_path('convoy'), 'rviz', 'convoy.rviz')

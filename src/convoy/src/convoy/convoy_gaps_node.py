@@ -1,17 +1,17 @@
 """convoy_gaps: each follower's distance to its leader, as rviz text markers."""
 
-import sys
 import threading
 from dataclasses import dataclass
 
 import rospy
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
+from turtle_lite.param_loader import get_private, load_or_exit
+from turtle_lite.params import ParamError, check_name, check_number
 from turtlesim.msg import Pose
 from visualization_msgs.msg import Marker, MarkerArray
 
 from convoy.gap_labels import chain_links, gap_label
-from turtle_lite import param_checks
 
 DEFAULT_ROBOTS = ['robot1', 'robot2', 'robot3']  # the course's convoy.launch
 TEXT_HEIGHT_M = 0.3
@@ -33,16 +33,16 @@ class ConvoyGapsConfig:
 
 
 def load_config():
-    """Reads and validates the private parameters. Raises ValueError naming the bad one."""
-    robots = rospy.get_param('~robots', DEFAULT_ROBOTS)
+    """Reads and validates the private parameters. Raises ParamError naming the bad one."""
+    robots = get_private('robots', DEFAULT_ROBOTS)
     try:
         links = tuple(chain_links(robots))
     except ValueError as err:
-        raise ValueError('parameter ~robots has value %r: %s' % (robots, err)) from err
+        raise ParamError('~robots', robots, str(err)) from err
     return ConvoyGapsConfig(
         links=links,
-        parent_frame=param_checks.name('~parent_frame', rospy.get_param('~parent_frame', 'world')),
-        rate_hz=param_checks.number('~rate_hz', rospy.get_param('~rate_hz', 5.0), 0.0, False))
+        parent_frame=check_name('~parent_frame', get_private('parent_frame', 'world')),
+        rate_hz=check_number('~rate_hz', get_private('rate_hz', 5.0), low=0.0, low_open=True))
 
 
 class ConvoyGaps:
@@ -110,11 +110,7 @@ class ConvoyGaps:
 
 def main():
     rospy.init_node('convoy_gaps')
-    try:
-        config = load_config()
-    except ValueError as err:
-        rospy.logfatal('convoy_gaps: %s', err)
-        sys.exit(1)
+    config = load_or_exit(load_config, 'convoy_gaps')
     rospy.loginfo('convoy_gaps: %s', ', '.join('%s -> %s' % link for link in config.links))
     ConvoyGaps(config)
     rospy.spin()

@@ -133,7 +133,7 @@ class LessonViewsTest(unittest.TestCase):
                                         stderr=subprocess.STDOUT, text=True,
                                         timeout=TOOL_DEADLINE_S)
                 self.assertNotEqual(result.returncode, 0, result.stdout)
-                self.assertIn('parameter %s has value' % name, result.stdout)
+                self.assertIn('parameter %s = ' % name, result.stdout)
 
     def test_rviz_shows_the_simulator_view(self):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'rviz',

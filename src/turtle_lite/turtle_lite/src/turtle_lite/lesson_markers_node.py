@@ -1,6 +1,5 @@
 """lesson_markers: what rviz shows of a lesson: the arena, each robot's arrow, name and trail."""
 
-import sys
 import threading
 from dataclasses import dataclass
 
@@ -9,7 +8,8 @@ from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
-from turtle_lite import param_checks
+from turtle_lite.param_loader import get_private, load_or_exit
+from turtle_lite.params import check_int, check_name, check_namespace, check_number
 from turtle_lite.pose_watch import PoseWatch
 from turtle_lite.trails import ARENA_RGB, Trail, arena_outline, robot_color
 
@@ -33,17 +33,17 @@ class LessonMarkersConfig:
 
 
 def load_config():
-    """Reads and validates the private parameters. Raises ValueError naming the bad one."""
+    """Reads and validates the private parameters. Raises ParamError naming the bad one."""
     return LessonMarkersConfig(
-        parent_frame=param_checks.name('~parent_frame', rospy.get_param('~parent_frame', 'world')),
-        namespace=param_checks.namespace('~namespace', rospy.get_param('~namespace', '/')),
-        trail_points=param_checks.integer('~trail_points', rospy.get_param('~trail_points', 600),
-                                          2, 100000),
-        trail_spacing_m=param_checks.number(
-            '~trail_spacing_m', rospy.get_param('~trail_spacing_m', 0.05), 0.0),
-        rate_hz=param_checks.number('~rate_hz', rospy.get_param('~rate_hz', 5.0), 0.0, False),
-        discovery_period_s=param_checks.number(
-            '~discovery_period_s', rospy.get_param('~discovery_period_s', 0.5), 0.0, False))
+        parent_frame=check_name('~parent_frame', get_private('parent_frame', 'world')),
+        namespace=check_namespace('~namespace', get_private('namespace', '/')),
+        trail_points=check_int(
+            '~trail_points', get_private('trail_points', 600), low=2, high=100000),
+        trail_spacing_m=check_number(
+            '~trail_spacing_m', get_private('trail_spacing_m', 0.05), low=0.0),
+        rate_hz=check_number('~rate_hz', get_private('rate_hz', 5.0), low=0.0, low_open=True),
+        discovery_period_s=check_number(
+            '~discovery_period_s', get_private('discovery_period_s', 0.5), low=0.0, low_open=True))
 
 
 def _color(rgb, alpha=1.0):
@@ -160,11 +160,7 @@ class LessonMarkers:
 
 def main():
     rospy.init_node('lesson_markers')
-    try:
-        config = load_config()
-    except ValueError as err:
-        rospy.logfatal('lesson_markers: %s', err)
-        sys.exit(1)
+    config = load_or_exit(load_config, 'lesson_markers')
     rospy.loginfo('lesson_markers: arena, arrows and trails (%d points) in %s at %g Hz',
                   config.trail_points, config.parent_frame, config.rate_hz)
     node = LessonMarkers(config)

@@ -8,6 +8,8 @@ message as FATAL and exits non-zero.
 """
 import math
 
+from turtle_lite.team_frames import normalize_namespace
+
 
 class ParamError(ValueError):
     """A parameter is missing or invalid; the message names it, its value and the expectation."""
@@ -78,3 +80,31 @@ def check_text(name, value, what='a non-empty string', strip=True):
     if not isinstance(value, str) or not (value.strip() if strip else value):
         raise ParamError(name, value, what)
     return value.strip() if strip else value
+
+
+def _is_name(value):
+    return isinstance(value, str) and bool(value.strip()) and ' ' not in value.strip()
+
+
+def check_name(name, value):
+    """value stripped, if it is a non-empty name without spaces (a frame or graph name)."""
+    if not _is_name(value):
+        raise ParamError(name, value, 'a non-empty name without spaces, e.g. world')
+    return value.strip()
+
+
+def check_name_list(name, value, min_length=0):
+    """value as a tuple of stripped names, if it is a list of at least min_length distinct ones."""
+    if not isinstance(value, (list, tuple)) or len(value) < min_length \
+            or not all(_is_name(v) for v in value) or len({v.strip() for v in value}) != len(value):
+        raise ParamError(name, value, 'a list of %sdistinct names, e.g. [robot1, robot2]'
+                         % ('%d or more ' % min_length if min_length else ''))
+    return tuple(v.strip() for v in value)
+
+
+def check_namespace(name, value):
+    """value as an absolute namespace ending in '/' (/, /sim or sim/ become /, /sim/)."""
+    try:
+        return normalize_namespace(value)
+    except ValueError:
+        raise ParamError(name, value, 'a namespace such as / or /turtlesim1') from None

@@ -1,6 +1,5 @@
 """pose_to_tf: every turtle of the graph in tf, parent `world`, child the turtle's name."""
 
-import sys
 import threading
 from dataclasses import dataclass
 
@@ -8,7 +7,8 @@ import rospy
 import tf2_ros
 from geometry_msgs.msg import TransformStamped
 
-from turtle_lite import param_checks
+from turtle_lite.param_loader import get_private, load_or_exit
+from turtle_lite.params import check_name, check_name_list, check_namespace, check_number
 from turtle_lite.pose_watch import PoseWatch
 from turtle_lite.team_frames import pose_to_transform
 
@@ -27,14 +27,14 @@ class PoseToTfConfig:
 
 
 def load_config():
-    """Reads and validates the private parameters. Raises ValueError naming the bad one."""
+    """Reads and validates the private parameters. Raises ParamError naming the bad one."""
     return PoseToTfConfig(
-        parent_frame=param_checks.name('~parent_frame', rospy.get_param('~parent_frame', 'world')),
-        namespace=param_checks.namespace('~namespace', rospy.get_param('~namespace', '/')),
-        turtles=param_checks.name_list('~turtles', rospy.get_param('~turtles', [])),
-        discovery_period_s=param_checks.number(
-            '~discovery_period_s', rospy.get_param('~discovery_period_s', 0.5), 0.0, False),
-        rate_hz=param_checks.number('~rate_hz', rospy.get_param('~rate_hz', 62.5), 0.0))
+        parent_frame=check_name('~parent_frame', get_private('parent_frame', 'world')),
+        namespace=check_namespace('~namespace', get_private('namespace', '/')),
+        turtles=check_name_list('~turtles', get_private('turtles', [])),
+        discovery_period_s=check_number(
+            '~discovery_period_s', get_private('discovery_period_s', 0.5), low=0.0, low_open=True),
+        rate_hz=check_number('~rate_hz', get_private('rate_hz', 62.5), low=0.0))
 
 
 def transform_msg(parent, child, stamp, transform):
@@ -113,11 +113,7 @@ class PoseToTf:
 
 def main():
     rospy.init_node('pose_to_tf')
-    try:
-        config = load_config()
-    except ValueError as err:
-        rospy.logfatal('pose_to_tf: %s', err)
-        sys.exit(1)
+    config = load_or_exit(load_config, 'pose_to_tf')
     rospy.loginfo('pose_to_tf: %s -> every turtle below %s%s, %s', config.parent_frame,
                   config.namespace,
                   ' (only %s)' % ', '.join(config.turtles) if config.turtles else '',

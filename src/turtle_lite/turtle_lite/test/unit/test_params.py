@@ -2,7 +2,16 @@
 import math
 
 import pytest
-from turtle_lite.params import ParamError, check_flag, check_int, check_number, check_text
+from turtle_lite.params import (
+    ParamError,
+    check_flag,
+    check_int,
+    check_name,
+    check_name_list,
+    check_namespace,
+    check_number,
+    check_text,
+)
 
 
 @pytest.mark.parametrize('value, bounds, expected', [
@@ -91,3 +100,41 @@ def test_check_text_refuses(value, strip, expected_text):
     with pytest.raises(ParamError) as err:
         check_text('~t', value, 'a topic', strip=strip)
     assert str(err.value) == expected_text
+
+
+@pytest.mark.parametrize('value, expected', [('world', 'world'), (' map ', 'map')])
+def test_check_name_accepts(value, expected):
+    assert check_name('~parent_frame', value) == expected
+
+
+@pytest.mark.parametrize('value', ['', '  ', 'a b', 3, None])
+def test_check_name_rejects(value):
+    with pytest.raises(ParamError, match=r'~parent_frame = .*: expected a non-empty'):
+        check_name('~parent_frame', value)
+
+
+@pytest.mark.parametrize('value, min_length, expected', [
+    ([], 0, ()), (['robot1'], 1, ('robot1',)), (('a', ' b'), 2, ('a', 'b')),
+])
+def test_check_name_list_accepts(value, min_length, expected):
+    assert check_name_list('~robots', value, min_length) == expected
+
+
+@pytest.mark.parametrize('value, min_length', [
+    ('robot1', 0), (['robot1'], 2), (['a', 'a'], 0), (['a', ''], 0), ([1, 2], 0),
+    (['a b'], 0), (None, 0),
+])
+def test_check_name_list_rejects(value, min_length):
+    with pytest.raises(ParamError, match=r'parameter ~robots = .*: expected a list of'):
+        check_name_list('~robots', value, min_length)
+
+
+@pytest.mark.parametrize('value, expected', [('/', '/'), ('sim', '/sim/'), ('/a/b/', '/a/b/')])
+def test_check_namespace_accepts(value, expected):
+    assert check_namespace('~namespace', value) == expected
+
+
+@pytest.mark.parametrize('value', [3, None, ['/']])
+def test_check_namespace_rejects(value):
+    with pytest.raises(ParamError, match=r'parameter ~namespace = .*: expected a namespace'):
+        check_namespace('~namespace', value)
