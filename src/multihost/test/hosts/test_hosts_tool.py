@@ -1,7 +1,11 @@
 """./ws hosts: the namespaces it makes, that they reach each other, and that nothing stays."""
+import atexit
 import os
+import pathlib
+import shutil
 import subprocess
 import sys
+import tempfile
 
 import pytest
 from turtle_lite.testing import wait_for
@@ -11,9 +15,11 @@ from multihost import hosts, netns
 HOSTS = [sys.executable, '-m', 'multihost.hosts']
 
 
-def _ws_hosts(*args, user=None):
+def _ws_hosts(*args, user=None, pythonpath=None):
     prefix = ['setpriv', '--reuid=%d' % user, '--regid=%d' % user, '--clear-groups'] if user else []
     env = dict(os.environ, ROS_HOME='/tmp')
+    if pythonpath:
+        env['PYTHONPATH'] = pythonpath
     return subprocess.run([*prefix, *HOSTS, *args], capture_output=True, text=True, env=env,
                           timeout=60, check=False)
 
@@ -56,7 +62,18 @@ def test_up_status_down_leave_nothing(hosts3):
 
 
 def test_not_root_says_so_in_one_line(hosts3):
-    result = _ws_hosts('up', '2', user=65534)
+    # An unprivileged user may not be able to read the checkout (a clone under a 0700 folder,
+    # and pytest's tmp_path is 0700 too): give it a world-readable copy of the tool's modules.
+    tmp_path = pathlib.Path(tempfile.mkdtemp(prefix='hosts_not_root_'))
+    atexit.register(shutil.rmtree, tmp_path, ignore_errors=True)
+    package = tmp_path / 'multihost'
+    package.mkdir(parents=True)
+    for module in (hosts, netns):
+        shutil.copy(module.__file__, package / os.path.basename(module.__file__))
+    (package / '__init__.py').write_text('')
+    for path in (tmp_path, package, *package.iterdir()):
+        path.chmod(0o755 if path.is_dir() else 0o644)
+    result = _ws_hosts('up', '2', user=65534, pythonpath=str(tmp_path))
     assert result.returncode == 1
     assert result.stderr.strip().splitlines()[-1] == (
         'hosts: cannot run: network namespaces need root (run as root, or with sudo)')
