@@ -98,17 +98,16 @@ cmd_lint() {
 # Every catkin package under src/, at any depth (src/turtle_lite/turtlesim, src/basics/chat_pkg).
 package_dirs() { find src -name package.xml -not -path '*/.*' -printf '%h\n' | sort; }
 
-# Every package's rostest files, and its unit-test folders.
+# Every package's rostest files.
 integration_files() { local d; for d in $(package_dirs); do compgen -G "$d/test/*.test" || true; done; }
-unit_dirs() { local d; for d in $(package_dirs); do [[ ! -d $d/test/unit ]] || echo "$d/test/unit"; done; }
-# Every package's multi-host test folder (test/hosts: pytest on network namespaces).
-hosts_dirs() { local d; for d in $(package_dirs); do [[ ! -d $d/test/hosts ]] || echo "$d/test/hosts"; done; }
+# Every package's test/NAME folder: test/unit (pytest), test/hosts (pytest on network namespaces).
+test_dirs() { local d; for d in $(package_dirs); do [[ ! -d $d/test/$1 ]] || echo "$d/test/$1"; done; }
 
 cmd_unit() {
   source_devel
   mkdir -p "$RESULTS_DIR"
   local status=0 dirs
-  mapfile -t dirs < <(unit_dirs)
+  mapfile -t dirs < <(test_dirs unit)
   /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS_DIR/unit.xml" \
     "${dirs[@]}" "$@" || status=$?
   # 5 = no tests collected: the summary reports that as a failure, not pytest's exit code.
@@ -143,7 +142,7 @@ cmd_multihost() {
   # Leftovers of a run that was killed outright (SIGKILL skips its clean-up).
   if [[ $(id -u) == 0 ]] && command -v ip >/dev/null; then rosrun multihost hosts down --stale || true; fi
   local status=0 dirs
-  mapfile -t dirs < <(hosts_dirs)
+  mapfile -t dirs < <(test_dirs hosts)
   timeout --kill-after=10 1200 /usr/bin/python3 -m pytest -q -p no:cacheprovider \
     --junitxml="$RESULTS_DIR/multihost.xml" -rs "${dirs[@]}" "$@" || status=$?
   ((status == 0 || status == 5))
