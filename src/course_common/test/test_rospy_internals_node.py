@@ -10,13 +10,13 @@ import unittest
 
 import rospy
 import rostest
+from course_common.publishers import unqueued_publisher
 from course_common.rospy_internals import (
     caller_id,
     cheap_rosout,
     connection_ids,
     has_subscribers,
     name_mappings,
-    tick_publisher,
     write_frame,
 )
 from course_common.testing import pin, wait_for
@@ -52,19 +52,18 @@ class Inbox:
 class RospyInternalsTest(unittest.TestCase):
 
     def test_1_connections_one_per_subscriber_with_caller_ids(self):
-        pub = tick_publisher('/pinned/pose', Pose)
-        pin(pub.impl.queue_size is None, 'Publisher.impl.queue_size', 'can be cleared')
+        pub = unqueued_publisher('/pinned/pose', Pose)
         wait_for(lambda: connection_ids(pub) == ECHO_NODES, DEADLINE_S,
                  'connections from %s (have %s)' % (sorted(ECHO_NODES), connection_ids(pub)))
         pin(len(pub.impl.connections) == 2, 'Publisher.impl.connections',
             'lists one connection per subscriber')
         pin(has_subscribers(pub), 'Publisher.impl.connections', 'is non-empty with subscribers')
         pin(all(not type(c).__name__.startswith('Queued') for c in pub.impl.connections),
-            'Publisher.impl.queue_size = None', 'keeps connections unqueued')
+            'Publisher(queue_size=None).impl.connections', 'holds the transports, unqueued')
         pub.unregister()
 
     def test_2_frames_written_arrive_intact_with_the_caller_id(self):
-        pub = tick_publisher('/pinned/frames', Pose)
+        pub = unqueued_publisher('/pinned/frames', Pose)
         self.assertFalse(has_subscribers(pub))
         inbox = Inbox('/pinned/frames', Pose)
         wait_for(lambda: has_subscribers(pub), DEADLINE_S, 'this node subscribed to itself')
@@ -87,7 +86,7 @@ class RospyInternalsTest(unittest.TestCase):
         write_frame(pub, frame)  # unregistered: impl is None or closed, nothing is sent
 
     def test_3_remove_connection_takes_a_subscriber_out(self):
-        pub = tick_publisher('/pinned/remove', Pose)
+        pub = unqueued_publisher('/pinned/remove', Pose)
         inbox = Inbox('/pinned/remove', Pose)
         wait_for(lambda: has_subscribers(pub), DEADLINE_S, 'this node subscribed to itself')
         conn = pub.impl.connections[0]

@@ -23,20 +23,6 @@ from course_common.tcpros_frames import send_frame
 ROSOUT_TOPICS_PARAM = '/rosout_disable_topics_generation'
 
 
-def tick_publisher(name, msg_class):
-    """A Publisher whose new connections are plain transports, for write_frame().
-
-    Replaces ``rospy.Publisher(name, msg_class, queue_size=N)``: rospy's queue_size wraps
-    every connection in a QueuedConnection, one thread per subscriber woken for each message
-    plus a sleep(0) per write. At 62.5 Hz per turtle that was most of the simulator's CPU
-    (bench/turtle_lite_bench.py, CPU with 50 turtles moving). Setting ``impl.queue_size``
-    to None after construction avoids rospy's warning about a missing queue_size.
-    """
-    pub = rospy.Publisher(name, msg_class, queue_size=1)
-    pub.impl.queue_size = None
-    return pub
-
-
 def has_subscribers(pub):
     """True if ``pub`` has at least one connected subscriber.
 
@@ -58,6 +44,10 @@ def connection_ids(pub):
 
 def write_frame(pub, frame):
     """Send one ready-made TCPROS frame to every subscriber of ``pub``; never blocks.
+
+    ``pub`` comes from course_common.publishers.unqueued_publisher (rospy's public
+    ``queue_size=None``), whose connections are the transports themselves, not rospy's
+    QueuedConnection wrappers: the pins check that the installed rospy still does that.
 
     Replaces ``pub.publish(msg)``: what rospy's _PublisherImpl.publish does after
     serialising, without the per-call checks, buffer juggling and message object. The tick

@@ -95,19 +95,27 @@ def test_transport_attributes(attribute):
     pin(hasattr(transport, attribute), 'TCPROSTransport.%s' % attribute, 'exists')
 
 
-def test_publisher_without_queue_size_keeps_plain_connections():
-    # tick_publisher() clears impl.queue_size so that connections are the transports
-    # themselves, which write_frame() writes to; remove_connection() takes one out again.
-    impl = rospy.topics._PublisherImpl('/pinned', rospy.AnyMsg)
-    pin(hasattr(impl, 'queue_size'), '_PublisherImpl.queue_size', 'exists')
-    impl.queue_size = None
-    transport = rospy.impl.tcpros_base.TCPROSTransport(
-        rospy.impl.tcpros_base.TCPROSTransportProtocol('/pinned', rospy.AnyMsg), '/pinned')
-    impl.add_connection(transport)
-    pin(impl.connections == [transport], '_PublisherImpl.add_connection() with queue_size None',
+def test_unqueued_publisher_keeps_plain_connections():
+    # write_frame() writes to impl.connections, so a publisher from unqueued_publisher()
+    # (rospy's public queue_size=None) must hold the transports themselves, not rospy's
+    # QueuedConnection wrappers; remove_connection() takes one out again. A fresh interpreter
+    # so the publisher stays out of pytest's rospy state.
+    out = _run('import rospy.impl.tcpros_base as base\n'
+               'from std_msgs.msg import String\n'
+               'from course_common.publishers import unqueued_publisher\n'
+               'pub = unqueued_publisher("/pinned", String)\n'
+               'impl = pub.impl\n'
+               't = base.TCPROSTransport(base.TCPROSTransportProtocol("/pinned", String), "/p")\n'
+               'impl.add_connection(t)\n'
+               'added = impl.connections == [t]\n'
+               'impl.remove_connection(t)\n'
+               'print(impl.queue_size, added, impl.connections == [])\n')
+    queue_size, added, removed = out.split()
+    pin(queue_size == 'None', 'Publisher(queue_size=None).impl.queue_size',
+        'is None (got %s)' % queue_size)
+    pin(added == 'True', '_PublisherImpl.add_connection() with queue_size None',
         'adds the transport itself to impl.connections')
-    impl.remove_connection(transport)
-    pin(impl.connections == [], '_PublisherImpl.remove_connection()',
+    pin(removed == 'True', '_PublisherImpl.remove_connection()',
         'removes the transport from impl.connections')
 
 

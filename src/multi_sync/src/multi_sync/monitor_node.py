@@ -2,10 +2,11 @@
 import threading
 
 import rospy
+from course_common.command_line import parse_argv_or_exit
+from course_common.publishers import unqueued_publisher
 from course_common.rospy_internals import caller_id, connection_ids
 
 from multi_sync.msg import RobotStatus
-from multi_sync.node_util import parse_argv_or_exit, synchronous_publisher
 from multi_sync.team import MONITOR_FRAME_ID, Outcome, TeamBook, parse_team_size
 
 # Robots re-announce every second until GO; a backlog this deep absorbs a whole team's
@@ -54,8 +55,8 @@ class MonitorNode:
         self._lock = threading.Lock()
         self._go_deadline = None  # set while GO waits for robots to subscribe
         # Synchronous: GO goes out to every robot from this thread in one pass.
-        self._pub = synchronous_publisher('team_status', RobotStatus, latch=True,
-                                          subscriber_listener=_RecheckOnConnect(self._try_go))
+        self._pub = unqueued_publisher('team_status', RobotStatus, latch=True,
+                                       subscriber_listener=_RecheckOnConnect(self._try_go))
         self._timer = rospy.Timer(rospy.Duration(CHECK_PERIOD_S), self._on_timer)
         rospy.loginfo('Waiting for robots to connect...')
         self._sub = rospy.Subscriber('team_status', RobotStatus, self._on_status,

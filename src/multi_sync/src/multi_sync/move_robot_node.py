@@ -3,14 +3,15 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
 from course_common.params import check_number
+from course_common.publishers import unqueued_publisher
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
 from multi_sync.motion import WORLD_SIZE_M, DriveLimits, TeamPositions, decide
 from multi_sync.msg import RobotPosition, RobotStatus
-from multi_sync.node_util import parse_argv_or_exit, synchronous_publisher
 from multi_sync.team import MONITOR_FRAME_ID, parse_robot_id
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
@@ -115,7 +116,7 @@ class MoveRobotNode:
         self._deferred = []  # log lines held back from the GO callback until the first tick
         # Synchronous: the first command leaves within the GO callback, the final stop
         # before the process exits.
-        self._cmd_pub = synchronous_publisher('robot_%d/cmd_vel' % robot_id, Twist)
+        self._cmd_pub = unqueued_publisher('robot_%d/cmd_vel' % robot_id, Twist)
         self._pos_pub = rospy.Publisher('team_positions', RobotPosition, queue_size=10)
         self._status_pub = rospy.Publisher('team_status', RobotStatus, queue_size=10,
                                            subscriber_listener=_AnnounceOnConnect(self))

@@ -1,12 +1,12 @@
 """ROS node of the basics course's move_turtle: forward at 0.5 m/s, logging the pose."""
 import contextlib
-import sys
 
 import rospy
+from course_common.command_line import parse_argv_or_exit
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
-from my_turtle.robot_name import UsageError, robot_from_args, robot_topics
+from my_turtle.robot_name import robot_from_args, robot_topics
 
 FORWARD_SPEED_MPS = 0.5  # the slide's FORWARD_SPEED_MPS
 RATE_HZ = 10  # the slide's ros::Rate rate(10)
@@ -55,12 +55,8 @@ class MoveTurtleNode:
 
 def main():
     """Entry point of move_turtle: rosrun my_turtle move_turtle [ROBOT_NAME]."""
-    try:
-        robot = robot_from_args(rospy.myargv(sys.argv)[1:])
-    except UsageError as err:
-        # Before init_node, as multi_sync's nodes do: a bad command line needs no master.
-        rospy.logerr('move_turtle: %s', err)
-        sys.exit(1)
+    # Before init_node, as multi_sync's nodes do: a bad command line needs no master.
+    robot = parse_argv_or_exit(robot_from_args, label='move_turtle')
     rospy.init_node('move_turtle')
     cmd_topic, pose_topic = robot_topics(robot)
     rospy.loginfo('move_turtle: robot %s (publishes %s, subscribes %s)', robot,

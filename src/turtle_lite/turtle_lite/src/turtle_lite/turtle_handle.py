@@ -1,6 +1,6 @@
-"""A turtle's six ROS resources in turtlesim_node: two tick publishers, three services, cmd_vel."""
+"""A turtle's six ROS resources in turtlesim_node: pose and colour publishers, services, cmd_vel."""
 import rospy
-from course_common.rospy_internals import tick_publisher
+from course_common.publishers import unqueued_publisher
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
@@ -21,8 +21,8 @@ class TurtleHandle:
         self.pose_pub = self.color_pub = self.cmd_sub = None
         self.services = []
         try:
-            self.pose_pub = tick_publisher(resources['pose'], Pose)
-            self.color_pub = tick_publisher(resources['color_sensor'], Color)
+            self.pose_pub = unqueued_publisher(resources['pose'], Pose)
+            self.color_pub = unqueued_publisher(resources['color_sensor'], Color)
             for key, srv_class, handler in (
                     ('set_pen', SetPen, sim.handle_set_pen),
                     ('teleport_relative', TeleportRelative, sim.handle_teleport_relative),
