@@ -7,12 +7,11 @@ import argparse
 import os
 import socket
 import sys
-import xmlrpc.client
 
 import rosgraph
 
-from .dotcode import RenderError, build_dot, output_format, render
-from .graph_model import filter_graph, graph_from_state
+from .dotcode import RenderError, output_format, render
+from .graph_source import GraphSource, MasterUnreachableError
 
 CALLER_ID = '/rqt_graph'  # master calls name a caller; no node of that name is registered
 DEFAULT_OUT = 'rqt_graph.png'  # where the graph goes when there is no display and no --out
@@ -20,32 +19,6 @@ DEFAULT_OUT = 'rqt_graph.png'  # where the graph goes when there is no display a
 #: packets would otherwise hang the tool for minutes).
 MASTER_TIMEOUT_S = 5.0
 REFRESH_S = 1.0  # the window asks the master this often; rqt_graph refreshes on demand
-
-
-class MasterUnreachableError(RuntimeError):
-    """The master did not answer."""
-
-
-class GraphSource:
-    """The current graph from the master, filtered, as a RosGraph and its pydot.Dot."""
-
-    def __init__(self, master, show_all=False, hide_leaf_topics=False, groups=True):
-        self._master = master
-        self._show_all = show_all
-        self._hide_leaf_topics = hide_leaf_topics
-        self._groups = groups
-
-    def read(self):
-        """(graph, dot); raises MasterUnreachableError."""
-        try:
-            state = self._master.getSystemState()
-            types = self._master.getTopicTypes()
-        except (OSError, xmlrpc.client.Error, rosgraph.MasterException) as err:
-            raise MasterUnreachableError('cannot reach the ROS master at %s (ROS_MASTER_URI): %s'
-                                    % (self._master.master_uri, err)) from None
-        graph = filter_graph(graph_from_state(state, types), hide_debug=not self._show_all,
-                             hide_leaf_topics=self._hide_leaf_topics)
-        return graph, build_dot(graph, clusters=self._groups)
 
 
 def parse_args(argv):

@@ -9,8 +9,8 @@ import os
 import signal
 import threading
 
-from .cli import MasterUnreachableError
 from .dotcode import RenderError, render
+from .graph_source import MasterUnreachableError
 
 TITLE = 'rqt_graph'
 POLL_MS = 200  # how often the Tk thread looks for a new picture: prompt, and cheap

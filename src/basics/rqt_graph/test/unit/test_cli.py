@@ -1,26 +1,6 @@
-"""Unit tests of rqt_graph.cli without a master: options, and GraphSource on a fake master."""
-import xmlrpc.client
-
+"""Unit tests of rqt_graph.cli without a master: the options and their errors."""
 import pytest
-from rqt_graph.cli import GraphSource, MasterUnreachableError, parse_args
-
-STATE = [[['/chatter', ['/talker']], ['/rosout', ['/talker']]],
-         [['/chatter', ['/listener']]], []]
-
-
-class FakeMaster:
-    master_uri = 'http://localhost:11411/'
-
-    def __init__(self, error=None):
-        self.error = error
-
-    def getSystemState(self):  # noqa: N802 - rosgraph.Master's name
-        if self.error:
-            raise self.error
-        return STATE
-
-    def getTopicTypes(self):  # noqa: N802 - rosgraph.Master's name
-        return [['/chatter', 'std_msgs/String']]
+from rqt_graph.cli import parse_args
 
 
 @pytest.mark.parametrize('argv, out, fmt, show_all', [
@@ -44,22 +24,3 @@ def test_parse_args_errors_exit_2(argv, words, capsys):
         parse_args(argv)
     assert exc.value.code == 2
     assert words in capsys.readouterr().err
-
-
-def test_source_filters_and_groups():
-    graph, dot = GraphSource(FakeMaster()).read()
-    assert graph.nodes == {'/talker', '/listener'}
-    assert graph.topic_types == {'/chatter': 'std_msgs/String'}
-    assert '"n/talker" -> "t/chatter"' in dot.to_string()
-    graph, _ = GraphSource(FakeMaster(), show_all=True).read()
-    assert '/rosout' in graph.topic_types
-
-
-@pytest.mark.parametrize('error', [
-    ConnectionRefusedError(111, 'Connection refused'),
-    TimeoutError('timed out'),
-    xmlrpc.client.ProtocolError('localhost:11411', 404, 'Not Found', {}),
-])
-def test_source_unreachable_names_the_uri(error):
-    with pytest.raises(MasterUnreachableError, match='http://localhost:11411/ .ROS_MASTER_URI.'):
-        GraphSource(FakeMaster(error)).read()
