@@ -17,7 +17,7 @@ import urllib.parse
 import netifaces
 import rosgraph
 
-from multihost import netcheck
+from multihost import net_findings
 
 TIMEOUT_S = 2.0  # per connection attempt: a LAN answers in milliseconds
 MAX_NODES = 200  # bounds the run on a large graph
@@ -71,20 +71,20 @@ def master_nodes(uri):
 def check(env, hosts, timeout_s):
     """(header lines, findings) for this host."""
     addrs = local_addresses()
-    host, source = netcheck.advertised_host(env, socket.gethostname(), addrs)
+    host, source = net_findings.advertised_host(env, socket.gethostname(), addrs)
     uri = env.get('ROS_MASTER_URI', '')
     header = ['this host advertises http://%s:<port>/ (from %s)' % (host, source),
-              'its addresses: %s' % (', '.join(netcheck.team_addresses(addrs)) or 'loopback only')]
+              'its addresses: %s' % (', '.join(net_findings.team_addresses(addrs)) or 'loopback only')]
     try:
-        master_host, master_port = netcheck.parse_master_uri(uri)
+        master_host, master_port = net_findings.parse_master_uri(uri)
     except ValueError as err:
         fix = ('export ROS_MASTER_URI=http://<host running roscore>:%d'
-               % netcheck.MASTER_DEFAULT_PORT)
-        return header, [netcheck.Finding(False, str(err), fix)]
+               % net_findings.MASTER_DEFAULT_PORT)
+        return header, [net_findings.Finding(False, str(err), fix)]
     master_resolved = resolve(master_host)
-    master_remote = not (netcheck.is_loopback(master_host) or (
+    master_remote = not (net_findings.is_loopback(master_host) or (
         master_resolved is not None and set(master_resolved) & set(addrs)))
-    findings = netcheck.own_findings(host, source, resolve(host), addrs, master_remote)
+    findings = net_findings.own_findings(host, source, resolve(host), addrs, master_remote)
     nodes, error = {}, None
     if master_resolved is not None:
         error = connect_error(master_host, master_port, timeout_s)
@@ -93,17 +93,17 @@ def check(env, hosts, timeout_s):
                 nodes = master_nodes(uri)
             except (OSError, rosgraph.MasterError) as err:
                 error = 'its XML-RPC failed: %s' % err
-    findings.append(netcheck.master_finding(uri, master_resolved, error, len(nodes)))
+    findings.append(net_findings.master_finding(uri, master_resolved, error, len(nodes)))
     for name, node_uri in nodes.items():
         parts = urllib.parse.urlparse(node_uri)
         resolved = resolve(parts.hostname or '')
         node_error = None if resolved is None else connect_error(
             parts.hostname, parts.port, timeout_s)
-        findings.append(netcheck.node_finding(name, node_uri, resolved, node_error))
+        findings.append(net_findings.node_finding(name, node_uri, resolved, node_error))
     for name in hosts:
         resolved = resolve(name)
-        findings.append(netcheck.Finding(True, 'host %s resolves to %s' % (name, ', '.join(
-            resolved))) if resolved else netcheck.Finding(
+        findings.append(net_findings.Finding(True, 'host %s resolves to %s' % (name, ', '.join(
+            resolved))) if resolved else net_findings.Finding(
             False, 'host %s does not resolve here' % name,
             'add "<its address> %s" to /etc/hosts (or use addresses: ROS_IP on every host)'
             % name))

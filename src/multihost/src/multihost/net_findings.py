@@ -5,7 +5,7 @@ The name comes from ROS_HOSTNAME, else ROS_IP, else the machine's hostname (rosg
 get_host_name order). The classic failures: a name other hosts cannot resolve (nodes "see"
 each other in `rostopic list` but receive nothing), a ROS_IP that is not this host's, a
 loopback name (localhost) on a team, and a master that is not reachable. The functions here
-turn facts gathered by net_check.py into findings with the exact fix.
+turn facts gathered by ros_net_check.py into findings with the exact fix.
 """
 import ipaddress
 import urllib.parse

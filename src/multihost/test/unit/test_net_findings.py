@@ -1,7 +1,7 @@
-"""Unit tests of multihost.netcheck: advertised names, and the finding and fix for each pitfall."""
+"""Unit tests of multihost.net_findings: advertised names, and the finding and fix for each pitfall."""
 import pytest
 
-from multihost import netcheck
+from multihost import net_findings
 
 HOST2 = ['127.0.0.1', '10.77.0.2', '::1', 'fe80::1']
 
@@ -15,11 +15,11 @@ HOST2 = ['127.0.0.1', '10.77.0.2', '::1', 'fe80::1']
     ({}, '', ('10.77.0.2', 'address')),
 ])
 def test_advertised_host_follows_rosgraph_order(env, hostname, expected):
-    assert netcheck.advertised_host(env, hostname, HOST2) == expected
+    assert net_findings.advertised_host(env, hostname, HOST2) == expected
 
 
 def test_advertised_host_loopback_only():
-    assert netcheck.advertised_host({}, 'localhost', ['127.0.0.1']) == ('127.0.0.1', 'address')
+    assert net_findings.advertised_host({}, 'localhost', ['127.0.0.1']) == ('127.0.0.1', 'address')
 
 
 @pytest.mark.parametrize(('host', 'loopback'), [
@@ -27,7 +27,7 @@ def test_advertised_host_loopback_only():
     ('localhost.localdomain', True), ('10.77.0.1', False), ('host1', False), ('localhostx', False),
 ])
 def test_is_loopback(host, loopback):
-    assert netcheck.is_loopback(host) is loopback
+    assert net_findings.is_loopback(host) is loopback
 
 
 @pytest.mark.parametrize(('addrs', 'fix'), [
@@ -38,7 +38,7 @@ def test_is_loopback(host, loopback):
      'connect this host to the team network, then export ROS_IP=<its address there>'),
 ])
 def test_ros_ip_fix(addrs, fix):
-    assert netcheck.ros_ip_fix(addrs) == fix
+    assert net_findings.ros_ip_fix(addrs) == fix
 
 
 @pytest.mark.parametrize(('uri', 'expected'), [
@@ -47,14 +47,14 @@ def test_ros_ip_fix(addrs, fix):
     ('http://host1', ('host1', 11311)),
 ])
 def test_parse_master_uri(uri, expected):
-    assert netcheck.parse_master_uri(uri) == expected
+    assert net_findings.parse_master_uri(uri) == expected
 
 
 @pytest.mark.parametrize('uri', ['', None, 'host1:11311', 'https://host1:11311', 'http://:11311',
                                  'http://host1:port'])
 def test_parse_master_uri_rejects(uri):
     with pytest.raises(ValueError, match='expected http://HOST:PORT'):
-        netcheck.parse_master_uri(uri)
+        net_findings.parse_master_uri(uri)
 
 
 @pytest.mark.parametrize(('host', 'source', 'resolved', 'remote', 'ok', 'what', 'fix'), [
@@ -82,14 +82,14 @@ def test_parse_master_uri_rejects(uri):
      'export ROS_IP=10.77.0.2'),
 ])
 def test_own_findings(host, source, resolved, remote, ok, what, fix):
-    first = netcheck.own_findings(host, source, resolved, HOST2, remote)[0]
+    first = net_findings.own_findings(host, source, resolved, HOST2, remote)[0]
     assert first.ok is ok
     assert what in first.what
     assert first.fix == fix
 
 
 def test_own_hostname_reminds_that_others_must_resolve_it():
-    findings = netcheck.own_findings('laptop', 'hostname', ['10.77.0.2'], HOST2, True)
+    findings = net_findings.own_findings('laptop', 'hostname', ['10.77.0.2'], HOST2, True)
     assert [f.ok for f in findings] == [True, True]
     assert "other hosts must resolve 'laptop'" in findings[1].what
 
@@ -103,7 +103,7 @@ def test_own_hostname_reminds_that_others_must_resolve_it():
      'not reachable', 'roscore runs on this host'),
 ])
 def test_master_finding(uri, resolved, error, ok, what, fix):
-    finding = netcheck.master_finding(uri, resolved, error, 5)
+    finding = net_findings.master_finding(uri, resolved, error, 5)
     assert finding.ok is ok
     assert what in finding.what
     assert fix in finding.fix
@@ -119,12 +119,12 @@ def test_master_finding(uri, resolved, error, ok, what, fix):
      'export ROS_IP'),
 ])
 def test_node_finding(uri, resolved, error, ok, what, fix):
-    finding = netcheck.node_finding('/robot', uri, resolved, error)
+    finding = net_findings.node_finding('/robot', uri, resolved, error)
     assert finding.ok is ok
     assert what in finding.what
     assert fix in finding.fix
 
 
 def test_finding_lines():
-    assert netcheck.Finding(True, 'good').lines() == ['ok   good']
-    assert netcheck.Finding(False, 'bad', 'do x').lines() == ['FAIL bad', '     fix: do x']
+    assert net_findings.Finding(True, 'good').lines() == ['ok   good']
+    assert net_findings.Finding(False, 'bad', 'do x').lines() == ['FAIL bad', '     fix: do x']
