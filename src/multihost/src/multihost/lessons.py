@@ -53,9 +53,9 @@ def start_convoy(team, layout=None, pose_period_s=0.1):
     team.start('sim', layout['sim'], ['roslaunch', 'convoy', 'convoy.launch', 'followers:=false',
                                       'autopilot:=true'])
     team.start('convoy_node', layout['convoy_node'],
-               ['roslaunch', 'multihost', 'convoy_follower.launch', 'name:=convoy_node',
+               ['roslaunch', 'convoy', 'convoy_follower.launch', 'name:=convoy_node',
                 'leader:=robot1', 'follower:=robot2'])
     team.start('convoy2_node', layout['convoy2_node'],
-               ['roslaunch', 'multihost', 'convoy_follower.launch', 'name:=convoy2_node',
+               ['roslaunch', 'convoy', 'convoy_follower.launch', 'name:=convoy2_node',
                 'leader:=robot2', 'follower:=robot3'])
     return probe

@@ -74,7 +74,8 @@ def check(env, hosts, timeout_s):
     host, source = net_findings.advertised_host(env, socket.gethostname(), addrs)
     uri = env.get('ROS_MASTER_URI', '')
     header = ['this host advertises http://%s:<port>/ (from %s)' % (host, source),
-              'its addresses: %s' % (', '.join(net_findings.team_addresses(addrs)) or 'loopback only')]
+              'its addresses: %s' % (', '.join(net_findings.team_addresses(addrs))
+                                     or 'loopback only')]
     try:
         master_host, master_port = net_findings.parse_master_uri(uri)
     except ValueError as err:

@@ -1,4 +1,4 @@
-"""Unit tests of multihost.net_findings: advertised names, and the finding and fix for each pitfall."""
+"""Unit tests of multihost.net_findings: advertised names, each pitfall's finding and fix."""
 import pytest
 
 from multihost import net_findings
