@@ -143,14 +143,14 @@ def child(n_robots, duration_s):
     import rosnode
     import rospy
     from convoy.bag_report import summarise_bag
-    from convoy.harness import POLL_S, LaunchedConvoy, convoy_node_names, launch_for
+    from convoy.harness import POLL_S, PrivateMasterLaunch, convoy_node_names, launch_for
     from convoy.metrics import delays_since_newest, percentile
     from convoy.recording import BagRecorder, convoy_topics
     from course_common.testing import wait_for
 
     out_dir = tempfile.mkdtemp(prefix='convoy_bench_')
     bag_path = os.path.join(out_dir, 'convoy.bag')
-    launch = LaunchedConvoy(launch_for(n_robots), os.path.join(out_dir, 'roslaunch.log'))
+    launch = PrivateMasterLaunch(launch_for(n_robots), os.path.join(out_dir, 'roslaunch.log'))
     recorder = BagRecorder(bag_path, convoy_topics(n_robots), os.path.join(out_dir, 'rosbag.log'))
     try:
         launch.start()

@@ -25,7 +25,7 @@ import time
 
 import numpy as np
 import rospy
-from convoy.harness import POLL_S, LaunchedConvoy
+from convoy.harness import POLL_S, PrivateMasterLaunch
 from course_common.testing import WaitError, wait_for
 from geometry_msgs.msg import Pose2D, Twist
 from turtlesim.msg import Pose as TurtlePose
@@ -225,8 +225,8 @@ def _fmt(value, pattern):
 def main():
     out_dir = tempfile.mkdtemp(prefix='go_to_goal_bench_')
     started = time.monotonic()
-    launch = LaunchedConvoy(['pioneer_mover', 'pioneer.launch', 'interface:=false'],
-                            os.path.join(out_dir, 'roslaunch.log'))
+    launch = PrivateMasterLaunch(['pioneer_mover', 'pioneer.launch', 'interface:=false'],
+                                 os.path.join(out_dir, 'roslaunch.log'))
     try:
         launch.start()
         rospy.init_node('go_to_goal_bench', disable_signals=True)

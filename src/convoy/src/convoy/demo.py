@@ -20,7 +20,7 @@ from turtle_lite.rviz_snapshot import snapshot
 from turtle_lite.srv import SaveImage
 
 from convoy.bag_report import BagError, summarise_bag, write_figures
-from convoy.harness import POLL_S, HarnessError, LaunchedConvoy, launch_for
+from convoy.harness import POLL_S, HarnessError, PrivateMasterLaunch, launch_for
 from convoy.recording import BagRecorder, convoy_topics
 from convoy.report import table_lines
 
@@ -83,8 +83,8 @@ def run(args):
     canvas_png = os.path.join(args.out, 'convoy_canvas.png')
     bag_path = os.path.join(args.out, 'convoy.bag')
     rviz_png = os.path.join(args.out, 'convoy_rviz.png')
-    launch = LaunchedConvoy(launch_for(args.n, args.gui, markers=True),
-                            os.path.join(args.out, 'roslaunch.log'))
+    launch = PrivateMasterLaunch(launch_for(args.n, args.gui, markers=True),
+                                 os.path.join(args.out, 'roslaunch.log'))
     recorder = BagRecorder(bag_path, convoy_topics(args.n), os.path.join(args.out, 'rosbag.log'))
     wall_start = time.monotonic()
     try:

@@ -1,7 +1,8 @@
-"""Runs a convoy launch file on a private master (used by convoy_demo and the bench).
+"""Runs a roslaunch on a private master: convoy_demo and the convoy and go-to-goal benches.
 
-LaunchedConvoy owns the roslaunch process, a ChildProcess like convoy.recording's rosbag
-recorder, which records the run.
+PrivateMasterLaunch owns the roslaunch process (any package's launch file: the go-to-goal
+bench launches pioneer_mover's), a ChildProcess like convoy.recording's rosbag recorder,
+which records the run.
 """
 import os
 import signal
@@ -17,7 +18,7 @@ STOP_TIMEOUT_S = 20.0  # roslaunch needs a few seconds to stop its nodes and mas
 
 
 class HarnessError(RuntimeError):
-    """The convoy could not be started or did not reach an expected state."""
+    """The launch could not be started or did not reach an expected state."""
 
 
 def free_port():
@@ -103,8 +104,8 @@ class ChildProcess:
         self.stop()
 
 
-class LaunchedConvoy(ChildProcess):
-    """A roslaunch of the convoy with its own master on a free port; a context manager.
+class PrivateMasterLaunch(ChildProcess):
+    """A roslaunch of any launch file with its own master on a free port; a context manager.
 
     Sets ROS_MASTER_URI (and ROS_LOG_DIR) in this process's environment, so a rospy node
     initialised afterwards joins that master.
