@@ -117,8 +117,10 @@ class TestConvoyLaunch(unittest.TestCase):
              ['~kp_lv', '-0.3', '>= 0']),
             ('bad_tolerance', 'convoy_node', CONVOY_NODE_ARGS + ['_distance_tolerance:=.nan'],
              ['~distance_tolerance', 'nan']),
-            ('autopilot_bad_speed', 'autopilot', ['_speed:=-1.0'], ['~speed', '-1.0', '> 0']),
-            ('autopilot_off_world', 'autopilot', ['_half_width:=6.0'], ['~half_width', 'walls']),
+            ('autopilot_bad_speed', 'autopilot', ['_speed_mps:=-1.0'],
+             ['~speed_mps', '-1.0', '> 0']),
+            ('autopilot_off_world', 'autopilot', ['_half_width_m:=6.0'],
+             ['~half_width_m', 'walls']),
         ]
         procs = [subprocess.Popen(['rosrun', PKG, exe, '__name:=%s' % name] + args,
                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,

@@ -7,6 +7,7 @@ from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number
 from turtlesim.msg import Pose
 
+from convoy.autopilot_params import choose_name
 from convoy.control import is_finite_pose
 from convoy.path import (
     DEFAULT_HALF_HEIGHT_M,
@@ -37,24 +38,30 @@ class AutopilotConfig:
 
 
 def _number_param(name, default):
-    return check_number('~' + name, get_private(name, default), low=0.0, low_open=True)
+    """~name (one of autopilot_params.NAMES), or its old name with a deprecation warning."""
+    choice = choose_name(name, lambda private: rospy.has_param('~' + private))
+    if choice.warning:
+        rospy.logwarn('autopilot: %s', choice.warning)
+    return check_number('~' + choice.read, get_private(choice.read, default), low=0.0,
+                        low_open=True)
 
 
 def load_config():
     """Reads and validates the private parameters. Raises ParamError or ValueError."""
-    path = Lemniscate(centre_x=_number_param('centre_x', WORLD_CENTRE_M),
-                      centre_y=_number_param('centre_y', WORLD_CENTRE_M),
-                      half_width=_number_param('half_width', DEFAULT_HALF_WIDTH_M),
-                      half_height=_number_param('half_height', DEFAULT_HALF_HEIGHT_M))
+    path = Lemniscate(centre_x=_number_param('centre_x_m', WORLD_CENTRE_M),
+                      centre_y=_number_param('centre_y_m', WORLD_CENTRE_M),
+                      half_width=_number_param('half_width_m', DEFAULT_HALF_WIDTH_M),
+                      half_height=_number_param('half_height_m', DEFAULT_HALF_HEIGHT_M))
     if not path.fits_in_world(WALL_MARGIN_M):
-        raise ValueError('parameters ~centre_x/~centre_y/~half_width/~half_height give a path '
-                          'with bounds %r: expected it %.1f m inside the walls of the %.2f m world'
-                          % (tuple(round(b, 2) for b in path.bounds()), WALL_MARGIN_M,
-                             2.0 * WORLD_CENTRE_M))
+        raise ValueError('parameters ~centre_x_m/~centre_y_m/~half_width_m/~half_height_m give '
+                         'a path with bounds %r: expected it %.1f m inside the walls of the '
+                         '%.2f m world' % (tuple(round(b, 2) for b in path.bounds()),
+                                           WALL_MARGIN_M, 2.0 * WORLD_CENTRE_M))
     return AutopilotConfig(path=path,
-                           speed_mps=_number_param('speed', DEFAULT_SPEED_MPS),
-                           lookahead_m=_number_param('lookahead', DEFAULT_LOOKAHEAD_M),
-                           max_turn_radps=_number_param('max_turn', DEFAULT_MAX_TURN_RADPS))
+                           speed_mps=_number_param('speed_mps', DEFAULT_SPEED_MPS),
+                           lookahead_m=_number_param('lookahead_m', DEFAULT_LOOKAHEAD_M),
+                           max_turn_radps=_number_param('max_turn_radps',
+                                                        DEFAULT_MAX_TURN_RADPS))
 
 
 class AutopilotNode:
@@ -66,13 +73,15 @@ class AutopilotNode:
         cmd_vel (geometry_msgs/Twist, queue 1): the turtle's command; remap to /robot1/cmd_vel.
             A zero Twist at shutdown.
     Services: none.
-    Parameters:
-        ~centre_x, ~centre_y (float, default 5.544445, m): centre of the eight (the world's).
-        ~half_width (float, default 4.5, m): half the eight's width (along x).
-        ~half_height (float, default 4.0, m): half the eight's height (along y).
-        ~speed (float, default 0.5, m/s): forward speed.
-        ~lookahead (float, default 0.8, m): pure-pursuit lookahead distance.
-        ~max_turn (float, default 2.0, rad/s): largest turn rate commanded.
+    Parameters (each also read under its name before units, ~speed for ~speed_mps etc., with a
+    deprecation warning; see convoy.autopilot_params):
+        ~centre_x_m, ~centre_y_m (float, default 5.544445, m): centre of the eight (the
+            world's).
+        ~half_width_m (float, default 4.5, m): half the eight's width (along x).
+        ~half_height_m (float, default 4.0, m): half the eight's height (along y).
+        ~speed_mps (float, default 0.5, m/s): forward speed.
+        ~lookahead_m (float, default 0.8, m): pure-pursuit lookahead distance.
+        ~max_turn_radps (float, default 2.0, rad/s): largest turn rate commanded.
     """
 
     def __init__(self, config):
