@@ -8,7 +8,6 @@ twice (the flake "2 != 1 : one GO"); with GoLatch once.
 import itertools
 
 import pytest
-
 from multi_sync.go_latch import GoLatch
 
 GO = 'GO'
