@@ -3,6 +3,7 @@ import threading
 
 import rospy
 from course_common.rospy_internals import caller_id, connection_ids
+from course_common.startup import init_node
 
 from multi_sync.go_latch import GoLatch
 from multi_sync.msg import RobotStatus
@@ -127,6 +128,6 @@ class MonitorNode:
 def main(argv=None):
     """rosrun multi_sync monitor TEAM_SIZE."""
     team_size = parse_argv_or_exit(parse_team_size, argv)
-    rospy.init_node('monitor')
+    init_node('monitor')
     MonitorNode(team_size)
     rospy.spin()

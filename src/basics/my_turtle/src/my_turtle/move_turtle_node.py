@@ -3,6 +3,7 @@ import contextlib
 import sys
 
 import rospy
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
@@ -61,7 +62,7 @@ def main():
         # Before init_node, as multi_sync's nodes do: a bad command line needs no master.
         rospy.logerr('move_turtle: %s', err)
         sys.exit(1)
-    rospy.init_node('move_turtle')
+    init_node('move_turtle')
     cmd_topic, pose_topic = robot_topics(robot)
     rospy.loginfo('move_turtle: robot %s (publishes %s, subscribes %s)', robot,
                   rospy.resolve_name(cmd_topic), rospy.resolve_name(pose_topic))
