@@ -5,6 +5,7 @@ import unittest
 
 import rospy
 import rostest
+from course_common.rospy_internals import caller_id
 from course_common.testing import wait_for
 from team_watch import NodeProcess, TeamWatch
 
@@ -13,6 +14,8 @@ from multi_sync.msg import RobotStatus
 # Generous deadlines for a loaded 2-core machine; passing tests finish far sooner.
 START_S = 60.0
 EVENT_S = 30.0
+# The monitor's line for a ready report after GO (it does not send GO again).
+LATE_READY = 'Robot %d reported ready after GO'
 
 
 def status(robot_id, is_ready=True, frame_id=''):
@@ -79,6 +82,36 @@ class TestStartOrder(unittest.TestCase):
         self.assertIsNone(monitor.proc.poll(), monitor.output)
         watch.close()
 
+    def test_one_go_for_a_subscriber_connecting_as_go_goes_out(self):
+        # The flake "2 != 1 : one GO" made deterministic. This test node is robot 0 of a team
+        # of one in /race: it reports ready before it subscribes, so the monitor's GO waits
+        # for its subscription and goes out as it connects (from the monitor's subscribe
+        # listener); then it re-announces, as a robot's timer does, after GO. Before the fix
+        # the monitor's latched GO reached this subscriber twice (rospy sends the latch after
+        # the listeners), or, when the GO was forced by the 3 s deadline first, the
+        # re-announcement was answered with a second GO.
+        gos = []
+        pub = rospy.Publisher('/race/team_status', RobotStatus, queue_size=10)
+        monitor = self.start('monitor', '1', env={'ROS_NAMESPACE': 'race'})
+        wait_for(lambda: pub.get_num_connections() >= 1, START_S,
+                 'the monitor to subscribe to /race/team_status')
+        pub.publish(status(0))
+        wait_for(lambda: monitor.printed('Robot 0 is ready!'), EVENT_S, 'robot 0 counted')
+        sub = rospy.Subscriber('/race/team_status', RobotStatus,
+                               lambda m: m.header.frame_id == 'monitor' and gos.append(m),
+                               queue_size=10, tcp_nodelay=True)
+        try:
+            wait_for(lambda: gos, EVENT_S, 'GO once this node subscribed')
+            pub.publish(status(0))
+            wait_for(lambda: monitor.printed(LATE_READY % 0) or len(gos) > 1, EVENT_S,
+                     'the monitor to handle the re-announcement after GO')
+            self.assertEqual(len(gos), 1, 'one GO, heard by every robot')
+            self.assertTrue(monitor.printed('All robots GO!'), monitor.output)
+        finally:
+            sub.unregister()
+            pub.unregister()
+        self.assertEqual(monitor.stop(), 0, monitor.output)
+
     def test_monitor_ignores_bad_statuses(self):
         # A monitor of two in its own namespace, fed by hand on /bad/team_status.
         watch = TeamWatch(0, namespace='/bad')
@@ -98,12 +131,19 @@ class TestStartOrder(unittest.TestCase):
                          monitor.output)
         self.assertFalse(monitor.printed('All robots GO!'), monitor.output)
 
+        # The watch also heard the fake GO above (this node's own message): count the
+        # monitor's only.
+        def monitor_gos():
+            with watch.lock:
+                return [m for _, m in watch.go_msgs if caller_id(m) == '/bad/monitor']
+
         pub.publish(status(0))
-        wait_for(watch.go_count, EVENT_S, 'GO once robots 0 and 1 are ready')
+        wait_for(monitor_gos, EVENT_S, 'GO once robots 0 and 1 are ready')
         wait_for(lambda: monitor.printed('All robots GO!'), EVENT_S, 'the GO log line')
-        # A ready after GO (a robot that missed it) is answered with GO again.
+        # A ready after GO is recorded, not answered: every subscriber has its one GO.
         pub.publish(status(1))
-        wait_for(lambda: watch.go_count() >= 2, EVENT_S, 'GO sent again after a late ready')
+        wait_for(lambda: monitor.printed(LATE_READY % 1), EVENT_S, 'the late ready logged')
+        self.assertEqual(len(monitor_gos()), 1, 'GO sent again after a late ready')
         self.assertIsNone(monitor.proc.poll(), monitor.output)
         self.assertEqual(monitor.stop(), 0, monitor.output)
         pub.unregister()

@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number
+from course_common.startup import init_node
 from turtlesim.msg import Pose
 
 from convoy.autopilot_params import choose_name
@@ -108,7 +109,7 @@ class AutopilotNode:
 
 def main():
     """Entry point of autopilot."""
-    rospy.init_node('autopilot')
+    init_node('autopilot')
     config = load_or_exit(load_config, 'autopilot')
     rospy.loginfo('autopilot: figure eight centred at (%.2f, %.2f) m, %.2f x %.2f m, at %.2f m/s, '
                   'driving %s from %s', config.path.centre_x, config.path.centre_y,

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import ParamError, check_name, check_number
+from course_common.startup import init_node
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from turtlesim.msg import Pose
@@ -109,7 +110,7 @@ class ConvoyGaps:
 
 
 def main():
-    rospy.init_node('convoy_gaps')
+    init_node('convoy_gaps')
     config = load_or_exit(load_config, 'convoy_gaps')
     rospy.loginfo('convoy_gaps: %s', ', '.join('%s -> %s' % link for link in config.links))
     ConvoyGaps(config)

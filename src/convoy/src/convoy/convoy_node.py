@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number, check_text
+from course_common.startup import init_node
 from turtlesim.msg import Pose
 
 from convoy.control import (
@@ -123,7 +124,7 @@ class ConvoyNode:
 
 def main():
     """Entry point of convoy_node."""
-    rospy.init_node('convoy_node')
+    init_node('convoy_node')
     config = load_or_exit(load_config, 'convoy_node')
     rospy.loginfo('convoy_node: leader_pose=%s follower_pose=%s follower_speeds=%s kp_lv=%g '
                   'kp_av=%g distance_tolerance=%g m',

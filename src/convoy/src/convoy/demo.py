@@ -15,6 +15,7 @@ import time
 import rosgraph
 import rospkg
 import rospy
+from course_common.startup import init_node
 from course_common.testing import WaitError, wait_for
 from turtle_lite.rviz_snapshot import snapshot
 from turtle_lite.srv import SaveImage
@@ -92,7 +93,7 @@ def run(args):
         recorder.start()
         print('convoy_demo: %d robots, master %s, recording %.0f s to %s'
               % (args.n, launch.master_uri, args.duration, bag_path), flush=True)
-        rospy.init_node('convoy_demo', anonymous=True, disable_signals=True)
+        init_node('convoy_demo', anonymous=True, disable_signals=True)
         master = rosgraph.Master(rospy.get_name())
         alive = running(launch, recorder)
         poses = ['/robot%d/pose' % i for i in range(1, args.n + 1)]

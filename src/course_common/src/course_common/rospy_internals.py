@@ -19,7 +19,7 @@ from rospy.impl.paramserver import get_param_server_cache
 
 from course_common.tcpros_frames import send_frame
 
-#: The parameter whose local cache entry cheap_rosout() seeds.
+#: The parameter whose local cache entry cheap_rosout() and cache_rosout_param() seed.
 ROSOUT_TOPICS_PARAM = '/rosout_disable_topics_generation'
 
 
@@ -80,6 +80,26 @@ def cheap_rosout():
     Log's ``topics`` is then empty, which only rqt_console's topic column shows.
     """
     get_param_server_cache().set(rospy.resolve_name(ROSOUT_TOPICS_PARAM), True)
+
+
+def cache_rosout_param():
+    """Ask the master for /rosout_disable_topics_generation once, not on every log line.
+
+    Replaces nothing public (rospy has no switch for it): for every log line rospy's /rosout
+    handler calls ``rospy.get_param_cached(ROSOUT_TOPICS_PARAM, False)``, and while the
+    parameter is unset (a plain roscore) rospy caches the master's "unset" answer as ``{}``,
+    which its cache treats as missing: one subscribeParam call to the master per line, from
+    every node (a talker at 10 Hz: 10 calls a second). This makes that call once
+    (``rospy.get_param_cached``, public, which also subscribes the node to the parameter)
+    and, if the parameter is unset, seeds the cache with rospy's own default, False. The Log
+    message is unchanged (its ``topics`` still listed); a later ``rosparam set`` still
+    reaches the node through the subscription. Returns the value now in the cache.
+    """
+    value = rospy.get_param_cached(ROSOUT_TOPICS_PARAM, None)
+    if value is None:
+        value = False
+        get_param_server_cache().set(rospy.resolve_name(ROSOUT_TOPICS_PARAM), value)
+    return value
 
 
 def add_preshutdown_hook(hook):

@@ -5,7 +5,9 @@ import rospy
 from course_common.command_line import parse_argv_or_exit
 from course_common.publishers import unqueued_publisher
 from course_common.rospy_internals import caller_id, connection_ids
+from course_common.startup import init_node
 
+from multi_sync.go_latch import GoLatch
 from multi_sync.msg import RobotStatus
 from multi_sync.team import MONITOR_FRAME_ID, Outcome, TeamBook, parse_team_size
 
@@ -14,22 +16,22 @@ from multi_sync.team import MONITOR_FRAME_ID, Outcome, TeamBook, parse_team_size
 STATUS_QUEUE = 100
 # A freshly started monitor hears the robots (it connects to their publishers) before the
 # robots have connected to its own publisher. GO waits until every ready robot listens, so
-# all receive the same GO message at once, but no longer than this (the GO is latched, and
-# a robot that still reports ready afterwards is answered).
+# all receive the same GO message at once, but no longer than this (a robot that subscribes
+# later gets GO as it connects).
 CONNECT_WAIT_S = 3.0
 # How often a pending GO re-checks the deadline above.
 CHECK_PERIOD_S = 0.05
 
 
-class _RecheckOnConnect(rospy.SubscribeListener):
-    """Calls back whenever a node subscribes to the monitor's team_status publisher."""
+class _GoOnConnect(rospy.SubscribeListener):
+    """Hands each new team_status subscriber's own publish function to the monitor."""
 
     def __init__(self, callback):
         super().__init__()
         self._callback = callback
 
     def peer_subscribe(self, topic_name, topic_publish, peer_publish):
-        self._callback()
+        self._callback(peer_publish)
 
 
 class MonitorNode:
@@ -40,27 +42,36 @@ class MonitorNode:
             header.frame_id is "monitor" (its own GO) are ignored, ids outside 0..19 are
             ignored with a warning, duplicates are counted once.
     Publishes:
-        team_status (multi_sync/RobotStatus, latched): GO, header.stamp = now,
+        team_status (multi_sync/RobotStatus): GO, header.stamp = now,
             header.frame_id = "monitor", robot_id = -1, is_ready = true. It is sent once
-            every ready robot has subscribed (at most CONNECT_WAIT_S after the last ready).
-            Latched, so a robot that subscribes after GO receives it on connecting; a ready
-            report after GO from a node GO did not reach (a robot started late) is answered
-            with a fresh GO.
+            every ready robot has subscribed (at most CONNECT_WAIT_S after the last ready),
+            to every subscriber in one pass, and to each later subscriber as it connects:
+            every subscriber gets exactly one GO (multi_sync.go_latch says why this is not
+            rospy's latch). A ready report after GO is logged and not answered.
     Services: none.
     Parameters: none (the team size is argv[1], as in the lesson).
     """
 
     def __init__(self, team_size):
         self._book = TeamBook(team_size)
+        self._latch = GoLatch()
         self._lock = threading.Lock()
         self._go_deadline = None  # set while GO waits for robots to subscribe
         # Synchronous: GO goes out to every robot from this thread in one pass.
-        self._pub = unqueued_publisher('team_status', RobotStatus, latch=True,
-                                       subscriber_listener=_RecheckOnConnect(self._try_go))
+        self._pub = unqueued_publisher('team_status', RobotStatus,
+                                       subscriber_listener=_GoOnConnect(self._on_subscriber))
         self._timer = rospy.Timer(rospy.Duration(CHECK_PERIOD_S), self._on_timer)
         rospy.loginfo('Waiting for robots to connect...')
         self._sub = rospy.Subscriber('team_status', RobotStatus, self._on_status,
                                      queue_size=STATUS_QUEUE, tcp_nodelay=True)
+
+    def _on_subscriber(self, send):
+        """A new subscriber connection: GO now if it was given, else maybe it completes GO."""
+        with self._lock:
+            if self._latch.connected(send):
+                send(self._latch.message)
+                return
+        self._try_go()
 
     def _publish_go(self):
         go = RobotStatus()
@@ -68,9 +79,8 @@ class MonitorNode:
         go.header.frame_id = MONITOR_FRAME_ID
         go.robot_id = -1
         go.is_ready = True
-        self._pub.publish(go)
-        # Read after publishing: a node that connected meanwhile got the latched GO instead.
-        self._book.go_sent(connection_ids(self._pub))
+        for send in self._latch.give(go):
+            send(go)
 
     def _try_go(self, force=False):
         """Publish the pending GO if every ready robot listens (or force); log it."""
@@ -100,22 +110,18 @@ class MonitorNode:
             outcome = self._book.report(msg.robot_id, msg.is_ready, msg.header.frame_id, sender)
             if outcome is Outcome.TEAM_READY:
                 self._go_deadline = rospy.get_time() + CONNECT_WAIT_S
-            answer = outcome is Outcome.ANSWER_GO and self._go_deadline is None
-            if answer:
-                self._publish_go()
         if outcome in (Outcome.NEW_READY, Outcome.TEAM_READY):
             rospy.loginfo('Robot %d is ready!', msg.robot_id)
         if outcome is Outcome.TEAM_READY:
             self._try_go()
-        elif answer:
-            rospy.loginfo('Robot %d reported ready after GO: sent GO again', msg.robot_id)
+        elif outcome is Outcome.AFTER_GO:
+            rospy.loginfo_throttle_identical(
+                5.0, 'Robot %d reported ready after GO: it gets GO as it subscribes, not again'
+                % msg.robot_id)
         elif outcome is Outcome.BAD_ID:
             rospy.logwarn_throttle(
                 5.0, 'Ignoring status with robot_id %d: expected an id between 0 and 19'
                 % msg.robot_id)
-        elif outcome is Outcome.GO_ON_ITS_WAY:
-            rospy.logdebug('Robot %d reported ready while GO was on its way to it: not repeated',
-                           msg.robot_id)
         elif outcome is Outcome.NOT_READY:
             rospy.logdebug('Robot %d reported not ready: ignored', msg.robot_id)
 
@@ -123,6 +129,6 @@ class MonitorNode:
 def main(argv=None):
     """rosrun multi_sync monitor TEAM_SIZE."""
     team_size = parse_argv_or_exit(parse_team_size, argv)
-    rospy.init_node('monitor')
+    init_node('monitor')
     MonitorNode(team_size)
     rospy.spin()

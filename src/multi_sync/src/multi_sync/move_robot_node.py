@@ -7,6 +7,7 @@ from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
 from course_common.params import check_number
 from course_common.publishers import unqueued_publisher
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
@@ -261,7 +262,7 @@ class MoveRobotNode:
 def main(argv=None):
     """rosrun multi_sync move_robot ROBOT_ID."""
     robot_id = parse_argv_or_exit(parse_robot_id, argv)
-    rospy.init_node('move_robot_%d' % robot_id)
+    init_node('move_robot_%d' % robot_id)
     config = load_or_exit(load_config, 'move_robot')
     rospy.loginfo('Robot %d: %s', robot_id, config)
     MoveRobotNode(robot_id, config)

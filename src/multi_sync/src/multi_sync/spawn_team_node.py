@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.params import check_int, check_number
+from course_common.startup import init_node
 from turtlesim.srv import Spawn
 
 from multi_sync.motion import team_layout
@@ -75,7 +76,7 @@ class SpawnTeam:
 
 def main():
     """rosrun multi_sync spawn_team _team_size:=N [_first_id:=1]."""
-    rospy.init_node('spawn_team')
+    init_node('spawn_team')
     config = load_or_exit(load_config, 'spawn_team')
     if not SpawnTeam(config).run():
         sys.exit(1)

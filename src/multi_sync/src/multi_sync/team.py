@@ -63,8 +63,7 @@ class Outcome(Enum):
     NEW_READY = 'new ready'        # a robot reported ready for the first time; not all yet
     TEAM_READY = 'team ready'      # this report completed the team: log GO and publish it
     DUPLICATE = 'duplicate'        # already counted, before GO: nothing to do
-    ANSWER_GO = 'answer go'        # a report after GO from a node GO did not reach: send again
-    GO_ON_ITS_WAY = 'go on its way'  # a report after GO from a node GO reached: nothing to do
+    AFTER_GO = 'after go'          # a report after GO: its sender gets GO as a subscriber
     NOT_READY = 'not ready'        # is_ready false: ignored
     BAD_ID = 'bad id'              # id outside 0..MAX_ROBOTS-1: warn and ignore
     MONITOR = 'monitor'            # a monitor's own message (its GO): ignore
@@ -75,16 +74,16 @@ class TeamBook:
     """The monitor's record of which robots are ready, and whether GO was given.
 
     GO is given once, when team_size distinct valid ids have reported ready. A ready report
-    after GO is answered with GO again only when its sender was not among the subscribers
-    GO was sent to: a robot that was subscribed receives that GO over TCP, even if it
-    re-announced before reading it (so the team hears one GO).
+    after GO is recorded and asks for nothing: every subscriber gets GO exactly once, when
+    it is given or as it subscribes (multi_sync.go_latch). Answering such a report with a
+    second GO was the flake "2 != 1 : one GO": a robot re-announces every second until it
+    reads GO, so its report can cross the GO on its way to it.
     """
 
     team_size: int
     ready_ids: set = field(default_factory=set)
     go_given: bool = False
     senders: dict = field(default_factory=dict)
-    go_reached: frozenset = frozenset()  # the nodes subscribed when GO was published
 
     def __post_init__(self):
         if isinstance(self.team_size, bool) or not isinstance(self.team_size, int) \
@@ -97,14 +96,10 @@ class TeamBook:
         """How many distinct robots have reported ready."""
         return len(self.ready_ids)
 
-    def go_sent(self, reached):
-        """Record that GO was published to the nodes named in reached (caller ids)."""
-        self.go_reached = frozenset(reached)
-
     def report(self, robot_id, is_ready, frame_id='', sender=''):
         """Record one RobotStatus (robot_id, is_ready, header.frame_id); return an Outcome.
 
-        sender names the node that sent it ('' if unknown); see unconnected() and go_sent().
+        sender names the node that sent it ('' if unknown); see unconnected().
         """
         if frame_id == MONITOR_FRAME_ID:
             return Outcome.MONITOR
@@ -115,9 +110,7 @@ class TeamBook:
         self.senders[robot_id] = sender
         if self.go_given:
             self.ready_ids.add(robot_id)
-            if sender and sender in self.go_reached:
-                return Outcome.GO_ON_ITS_WAY
-            return Outcome.ANSWER_GO
+            return Outcome.AFTER_GO
         if robot_id in self.ready_ids:
             return Outcome.DUPLICATE
         self.ready_ids.add(robot_id)

@@ -17,6 +17,7 @@ import threading
 import time
 
 import rospy
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 from turtlesim.msg import Pose
@@ -81,7 +82,7 @@ def main(argv=None):
     parser.add_argument('--pose-period', type=float, default=0.1,
                         help='seconds between printed poses per robot (0: every pose)')
     args = parser.parse_args(rospy.myargv(argv if argv is not None else sys.argv)[1:])
-    rospy.init_node('team_probe', disable_signals=False)
+    init_node('team_probe', disable_signals=False)
     TeamProbe(args.robots, args.status, args.pose_period)
     rospy.spin()
 

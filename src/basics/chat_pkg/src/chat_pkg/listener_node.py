@@ -1,5 +1,6 @@
 """The basics deck's listener: logs "I heard: [<text>]" for every String on chatter."""
 import rospy
+from course_common.startup import init_node
 from std_msgs.msg import String
 
 TOPIC = 'chatter'  # relative, as on the slide, so ns and remaps apply
@@ -23,6 +24,6 @@ class Listener:
 
 def main():
     """Entry point of listener (node name "listener")."""
-    rospy.init_node('listener')
+    init_node('listener')
     Listener()
     rospy.spin()

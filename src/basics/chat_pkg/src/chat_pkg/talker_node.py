@@ -1,5 +1,6 @@
 """The basics deck's talker: publishes "hello world <count>" on chatter at 10 Hz."""
 import rospy
+from course_common.startup import init_node
 from std_msgs.msg import String
 
 TOPIC = 'chatter'  # relative, as on the slide, so ns and remaps apply
@@ -36,5 +37,5 @@ class Talker:
 
 def main():
     """Entry point of talker (node name "talker"; __name:=talker1 renames it)."""
-    rospy.init_node('talker')
+    init_node('talker')
     Talker().spin()

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number
+from course_common.startup import init_node
 from geometry_msgs.msg import Pose2D, Twist
 
 from closed_loop_turtle.go_to_goal import (
@@ -190,7 +191,7 @@ class MoveTurtleToGoalNode:
 def main():
     """Entry point of move_turtle_to_goal.py."""
     # anonymous=True as in the lab's controller_init ('turtle_closed_loop').
-    rospy.init_node('turtle_closed_loop', anonymous=True)
+    init_node('turtle_closed_loop', anonymous=True)
     config = load_or_exit(load_config, 'move_turtle_to_goal')
     rospy.loginfo('move_turtle_to_goal: k_rho=%g k_alpha=%g k_beta=%g position_tolerance=%g m '
                   'heading_tolerance=%g rad max_linear=%g m/s max_angular=%g rad/s rate=%g Hz '

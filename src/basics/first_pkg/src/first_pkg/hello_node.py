@@ -1,5 +1,6 @@
 """The basics deck's first node (hello): logs "hello world <count>" at 10 Hz."""
 import rospy
+from course_common.startup import init_node
 
 RATE_HZ = 10  # the slide's ros::Rate loop_rate(10)
 # The slide's code streams "hello world" << count, which would print "hello world0"; the
@@ -31,5 +32,5 @@ class HelloNode:
 
 def main():
     """Entry point of hello."""
-    rospy.init_node('hello')
+    init_node('hello')
     HelloNode().spin()

@@ -3,6 +3,7 @@ import contextlib
 
 import rospy
 from course_common.command_line import parse_argv_or_exit
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
@@ -57,7 +58,7 @@ def main():
     """Entry point of move_turtle: rosrun my_turtle move_turtle [ROBOT_NAME]."""
     # Before init_node, as multi_sync's nodes do: a bad command line needs no master.
     robot = parse_argv_or_exit(robot_from_args, label='move_turtle')
-    rospy.init_node('move_turtle')
+    init_node('move_turtle')
     cmd_topic, pose_topic = robot_topics(robot)
     rospy.loginfo('move_turtle: robot %s (publishes %s, subscribes %s)', robot,
                   rospy.resolve_name(cmd_topic), rospy.resolve_name(pose_topic))

@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 
 from pioneer_mover.relay import DEFAULT_DIVISOR, check_divisor, scale_twist
@@ -79,7 +80,7 @@ class PioneerInterfaceNode:
 def main():
     """Entry point of pioneer_interface.py."""
     # anonymous=True as in the lab: two copies can run side by side.
-    rospy.init_node('pioneer_interface', anonymous=True)
+    init_node('pioneer_interface', anonymous=True)
     config = load_or_exit(load_config, 'pioneer_interface')
     rospy.loginfo('pioneer_interface: %s -> %s divided by %g',
                   rospy.resolve_name('/turtle1/cmd_vel'), rospy.resolve_name('/pioneer/cmd_vel'),

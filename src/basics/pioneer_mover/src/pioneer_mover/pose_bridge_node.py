@@ -2,6 +2,7 @@
 import contextlib
 
 import rospy
+from course_common.startup import init_node
 from geometry_msgs.msg import Pose2D
 from turtlesim.msg import Pose
 
@@ -43,7 +44,7 @@ class PoseBridgeNode:
 
 def main():
     """Entry point of pose_bridge."""
-    rospy.init_node('pose_bridge')
+    init_node('pose_bridge')
     rospy.loginfo('pose_bridge: %s (turtlesim/Pose) -> %s (geometry_msgs/Pose2D)',
                   rospy.resolve_name('turtle_pose'), rospy.resolve_name('pose'))
     PoseBridgeNode()

@@ -7,6 +7,7 @@ SquareDriver of square_driver.
 import threading
 
 import rospy
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
@@ -79,7 +80,7 @@ class DrawSquareNode:
 
 
 def main():
-    rospy.init_node("draw_square")
+    init_node("draw_square")
     node = DrawSquareNode()
     rospy.on_shutdown(node.stop)
     node.reset_simulator()

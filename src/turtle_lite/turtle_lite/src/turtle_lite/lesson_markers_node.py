@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_int, check_name, check_namespace, check_number
+from course_common.startup import init_node
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
@@ -159,7 +160,7 @@ class LessonMarkers:
 
 
 def main():
-    rospy.init_node('lesson_markers')
+    init_node('lesson_markers')
     config = load_or_exit(load_config, 'lesson_markers')
     rospy.loginfo('lesson_markers: arena, arrows and trails (%d points) in %s at %g Hz',
                   config.trail_points, config.parent_frame, config.rate_hz)

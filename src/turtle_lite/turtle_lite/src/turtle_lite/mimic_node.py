@@ -6,6 +6,7 @@ pose-to-command copy are the pure functions of mimic_relay.
 
 import rospy
 from course_common.rospy_internals import name_mappings
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
@@ -45,7 +46,7 @@ class MimicNode:
 
 
 def main():
-    rospy.init_node("turtle_mimic")
+    init_node("turtle_mimic")
     try:
         pose_topic, cmd_vel_topic = mimic_topics(
             rospy.get_namespace(), rospy.get_name(), name_mappings())

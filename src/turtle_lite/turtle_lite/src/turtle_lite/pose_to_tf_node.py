@@ -7,6 +7,7 @@ import rospy
 import tf2_ros
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_name, check_name_list, check_namespace, check_number
+from course_common.startup import init_node
 from geometry_msgs.msg import TransformStamped
 
 from turtle_lite.pose_watch import PoseWatch
@@ -112,7 +113,7 @@ class PoseToTf:
 
 
 def main():
-    rospy.init_node('pose_to_tf')
+    init_node('pose_to_tf')
     config = load_or_exit(load_config, 'pose_to_tf')
     rospy.loginfo('pose_to_tf: %s -> every turtle below %s%s, %s', config.parent_frame,
                   config.namespace,

@@ -10,6 +10,7 @@ import sys
 
 import rospy
 from course_common.param_loader import load_or_exit
+from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 
 from turtle_lite.teleop_keys import (
@@ -97,7 +98,7 @@ def main():
             "(under roslaunch, give the node launch-prefix=\"xterm -e\")\n"
         )
         sys.exit(1)
-    rospy.init_node("teleop_turtle")
+    init_node("teleop_turtle")
     config = load_or_exit(load_config, "turtle_teleop_key")
     rospy.loginfo(
         "teleop_turtle: scale_linear=%g m/s, scale_angular=%g rad/s",

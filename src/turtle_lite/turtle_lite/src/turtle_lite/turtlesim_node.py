@@ -28,6 +28,7 @@ import time
 import rospy
 from course_common.graph_names import graph_name_error
 from course_common.rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
+from course_common.startup import init_node
 from std_srvs.srv import Empty, EmptyResponse
 from turtlesim.srv import (
     Kill,
@@ -302,7 +303,7 @@ class TurtleSimNode:
 
 
 def main():
-    rospy.init_node('turtlesim')
+    init_node('turtlesim')
     cheap_rosout()
     params = load_params()
     sim = TurtleSimNode(params)

@@ -1,0 +1,80 @@
+"""course_common.startup: every workspace node asks the master once for rospy's /rosout param.
+
+rospy asks the master for /rosout_disable_topics_generation on every log line while that
+parameter is unset (a plain roscore). The first test runs a logging node against a master
+in this process that records every call (no roscore) and fails if the node asks again per
+line; the second pins that plain rospy still does (if it stops, startup's seeding can go);
+the last fails if a node of the workspace starts without course_common.startup.init_node.
+"""
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from course_common.testing.master_calls import CountingMaster
+
+LINES = 30
+RUN_TIMEOUT_S = 60.0  # a fresh interpreter importing rospy, 30 lines at 50 Hz; loaded machine
+# A node that logs LINES lines at 50 Hz, started with startup.init_node or rospy.init_node.
+PROBE = '''
+import sys
+import rospy
+from course_common.startup import init_node
+(init_node if sys.argv[1] == 'startup' else rospy.init_node)('rosout_probe')
+rate = rospy.Rate(50)
+for i in range(%d):
+    rospy.loginfo('line %%d', i)
+    rate.sleep()
+''' % LINES
+SRC = Path(__file__).resolve().parents[3]
+# The lab's own scripts, kept as students type them (beginner_tutorials' README says so).
+EXEMPT = {'basics/beginner_tutorials/scripts/talker.py',
+          'basics/beginner_tutorials/scripts/listener.py'}
+
+
+@pytest.fixture
+def master():
+    m = CountingMaster()
+    yield m
+    m.stop()
+
+
+def run_probe(master, start):
+    env = dict(os.environ, ROS_MASTER_URI=master.uri)
+    done = subprocess.run([sys.executable, '-c', PROBE, start], capture_output=True, text=True,
+                          timeout=RUN_TIMEOUT_S, env=env, check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.count('line ') == LINES, done.stdout
+    return master.calls(caller='/rosout_probe', method='subscribeParam')
+
+
+def test_startup_asks_the_master_once_not_per_log_line(master):
+    calls = run_probe(master, 'startup')
+    assert len(calls) == 1, ('%d subscribeParam calls for %d log lines: a node started with '
+                             'course_common.startup asks the master per line' % (len(calls), LINES))
+
+
+def test_plain_rospy_still_asks_per_log_line(master):
+    calls = run_probe(master, 'rospy')
+    assert len(calls) >= LINES, ('rospy asked the master %d times for %d log lines: it caches '
+                                 '/rosout_disable_topics_generation now, so '
+                                 'startup.cache_rosout_param may go' % (len(calls), LINES))
+
+
+def _node_sources():
+    for path in sorted(SRC.rglob('*')):
+        rel = path.relative_to(SRC).as_posix()
+        if not path.is_file() or '/test/' in '/' + rel or rel in EXEMPT:
+            continue
+        if path.suffix == '.py' or path.parent.name == 'scripts':
+            yield rel, path.read_text(errors='replace')
+
+
+def test_every_node_starts_with_course_common_startup():
+    plain = [rel for rel, text in _node_sources()
+             if re.search(r'\brospy\.init_node\(', text) and rel != 'course_common/src/'
+             'course_common/startup.py']
+    assert plain == [], ('these call rospy.init_node: use course_common.startup.init_node, '
+                         'which asks the master once for /rosout_disable_topics_generation')
