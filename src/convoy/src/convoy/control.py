@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 
 from course_common.angles import wrap_angle
-from course_common.finite import check_finite
+from course_common.finite import check_fields
 from course_common.planar import STOP, Command, is_finite_pose
 
 # The course's solution values.
@@ -38,9 +38,7 @@ class Gains:
     tolerance_m: float = DEFAULT_TOLERANCE_M
 
     def __post_init__(self):
-        for name in ('kp_lv', 'kp_av', 'tolerance_m'):
-            if check_finite(name, getattr(self, name)) < 0.0:
-                raise ValueError('%s must be >= 0, got %r' % (name, getattr(self, name)))
+        check_fields(self, low=0.0)
 
 
 def distance(leader, follower):

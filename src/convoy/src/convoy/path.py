@@ -32,11 +32,6 @@ _SEARCH_STEPS = 80
 _GLOBAL_STEPS = 720
 
 
-def _check_finite_positive(name, value):
-    if check_finite(name, value) <= 0.0:
-        raise ValueError('%s must be > 0, got %r' % (name, value))
-
-
 @dataclass(frozen=True)
 class Lemniscate:
     """A figure eight p(s) = (cx + a sin s, cy + h sin 2s); raises ValueError if degenerate."""
@@ -49,8 +44,8 @@ class Lemniscate:
     def __post_init__(self):
         check_finite('centre_x', self.centre_x)
         check_finite('centre_y', self.centre_y)
-        _check_finite_positive('half_width', self.half_width)
-        _check_finite_positive('half_height', self.half_height)
+        check_finite('half_width', self.half_width, low=0.0, low_open=True)
+        check_finite('half_height', self.half_height, low=0.0, low_open=True)
 
     def point(self, s):
         """(x, y) of the path at parameter s."""
@@ -83,13 +78,11 @@ class PurePursuit:
 
     def __init__(self, path, speed_mps=DEFAULT_SPEED_MPS, lookahead_m=DEFAULT_LOOKAHEAD_M,
                  max_turn_radps=DEFAULT_MAX_TURN_RADPS):
-        _check_finite_positive('speed_mps', speed_mps)
-        _check_finite_positive('lookahead_m', lookahead_m)
-        _check_finite_positive('max_turn_radps', max_turn_radps)
         self.path = path
-        self.speed_mps = float(speed_mps)
-        self.lookahead_m = float(lookahead_m)
-        self.max_turn_radps = float(max_turn_radps)
+        self.speed_mps = check_finite('speed_mps', speed_mps, low=0.0, low_open=True)
+        self.lookahead_m = check_finite('lookahead_m', lookahead_m, low=0.0, low_open=True)
+        self.max_turn_radps = check_finite('max_turn_radps', max_turn_radps, low=0.0,
+                                           low_open=True)
         self.progress = None  # path parameter of the closest point; None before the first pose
 
     def _closest(self, pose):

@@ -27,7 +27,7 @@ from enum import Enum
 
 from course_common.angles import wrap_angle
 from course_common.arena import WORLD_SIZE_M, inside
-from course_common.finite import check_finite
+from course_common.finite import check_fields
 from course_common.planar import STOP, Command
 from course_common.planar import check_pose as check_finite_pose
 
@@ -47,13 +47,11 @@ class GoalError(ValueError):
     """A goal or pose the controller refuses; the message says what was expected."""
 
 
-def _check_positive_fields(obj):
-    """Every field of the dataclass obj a finite number > 0 (ValueError naming it)."""
-    for name in obj.__dataclass_fields__:
-        value = getattr(obj, name)
-        check_finite(name, value)
-        if value <= 0.0:
-            raise ValueError('%s must be > 0, got %r' % (name, value))
+class _PositiveFields:
+    """Checks on construction that every field of the dataclass is a finite number > 0."""
+
+    def __post_init__(self):
+        check_fields(self, low=0.0, low_open=True)
 
 
 @dataclass(frozen=True)
@@ -65,8 +63,8 @@ class Gains:
     k_beta: float = DEFAULT_K_BETA
 
     def __post_init__(self):
-        for name in ('k_rho', 'k_alpha', 'k_beta'):
-            check_finite(name, getattr(self, name))
+        check_fields(self)
+        # The lab's stability conditions, in its words (the node's FATAL line quotes them).
         if self.k_rho <= 0.0:
             raise ValueError('k_rho must be > 0, got %r' % self.k_rho)
         if self.k_beta >= 0.0:
@@ -77,25 +75,19 @@ class Gains:
 
 
 @dataclass(frozen=True)
-class Tolerances:
+class Tolerances(_PositiveFields):
     """When a goal counts as reached: distance (m) and heading error (rad), both > 0."""
 
     position_m: float = DEFAULT_POSITION_TOLERANCE_M
     heading_rad: float = DEFAULT_HEADING_TOLERANCE_RAD
 
-    def __post_init__(self):
-        _check_positive_fields(self)
-
 
 @dataclass(frozen=True)
-class Limits:
+class Limits(_PositiveFields):
     """Top speeds, both > 0: forward (m/s) and turn rate (rad/s)."""
 
     max_linear_mps: float = DEFAULT_MAX_LINEAR_MPS
     max_angular_radps: float = DEFAULT_MAX_ANGULAR_RADPS
-
-    def __post_init__(self):
-        _check_positive_fields(self)
 
 
 class Phase(Enum):

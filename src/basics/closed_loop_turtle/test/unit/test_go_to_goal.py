@@ -119,10 +119,10 @@ def test_gains_check_the_labs_conditions(kwargs, words):
 
 
 @pytest.mark.parametrize('cls, kwargs, words', [
-    (Tolerances, {'position_m': 0.0}, 'position_m must be > 0'),
-    (Tolerances, {'heading_rad': -0.1}, 'heading_rad must be > 0'),
-    (Limits, {'max_linear_mps': math.inf}, 'max_linear_mps = inf: expected a finite number'),
-    (Limits, {'max_angular_radps': 0}, 'max_angular_radps must be > 0'),
+    (Tolerances, {'position_m': 0.0}, 'position_m = 0.0: expected a finite number > 0'),
+    (Tolerances, {'heading_rad': -0.1}, 'heading_rad = -0.1: expected a finite number > 0'),
+    (Limits, {'max_linear_mps': math.inf}, 'max_linear_mps = inf: expected a finite number > 0'),
+    (Limits, {'max_angular_radps': 0}, 'max_angular_radps = 0: expected a finite number > 0'),
 ])
 def test_bad_tolerances_and_limits(cls, kwargs, words):
     with pytest.raises(ValueError, match=words):
