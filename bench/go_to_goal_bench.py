@@ -26,12 +26,14 @@ import time
 import numpy as np
 import rospy
 from convoy.harness import POLL_S, PrivateMasterLaunch
+from course_common.angles import wrap_angle
+from course_common.arena import SPAWN_M, WORLD_SIZE_M
 from course_common.testing import WaitError, wait_for
 from geometry_msgs.msg import Pose2D, Twist
 from turtlesim.msg import Pose as TurtlePose
 from turtlesim.srv import TeleportAbsolute
 
-START = (5.544445, 5.544445, 0.0)  # turtle1's spawn pose: the world's centre, heading +x
+START = (SPAWN_M, SPAWN_M, 0.0)  # turtle1's spawn pose: the world's centre, heading +x
 GOALS = (
     (8.5, 5.5, 0.0),    # ahead
     (2.5, 5.0, 3.0),    # behind the robot
@@ -39,16 +41,11 @@ GOALS = (
     (8.0, 8.5, 1.0),    # behind and to the right, far
     (1.0, 1.0, -1.5),   # far behind
 )
-WORLD_M = 11.088889
 WALL_EPS_M = 1e-3  # a pose this close to an edge is pinned against the wall
 GOAL_TIMEOUT_S = 60.0  # the lab's loop has no way out: give up on a goal after this
 START_TIMEOUT_S = 40.0
 REST_TIMEOUT_S = 10.0
 LAB_K_RHO, LAB_K_ALPHA, LAB_K_BETA = 3.14, 5, -3  # the lab's literals
-
-
-def wrap(angle):
-    return (angle + math.pi) % (2 * math.pi) - math.pi
 
 
 class Watch:
@@ -68,9 +65,9 @@ class Watch:
     def _on_pose(self, msg):
         with self._lock:
             if self.pose is not None:
-                self._turned += abs(wrap(msg.theta - self.pose.theta))
+                self._turned += abs(wrap_angle(msg.theta - self.pose.theta))
             self.pose = msg
-            if min(msg.x, msg.y) < WALL_EPS_M or max(msg.x, msg.y) > WORLD_M - WALL_EPS_M:
+            if min(msg.x, msg.y) < WALL_EPS_M or max(msg.x, msg.y) > WORLD_SIZE_M - WALL_EPS_M:
                 self._wall += 1
 
     def _on_cmd(self, msg):
@@ -164,7 +161,7 @@ def _result(watch, goal, sent_at, arrived_at):
     turned, wall, peak = watch.counters()
     return {'time_s': arrived_at - sent_at, 'peak': peak,
             'pos_err_m': math.hypot(pose.x - goal[0], pose.y - goal[1]),
-            'head_err_rad': abs(wrap(pose.theta - goal[2])), 'turned_rad': turned,
+            'head_err_rad': abs(wrap_angle(pose.theta - goal[2])), 'turned_rad': turned,
             'wall_poses': wall}
 
 

@@ -12,9 +12,6 @@ from turtlesim.msg import Pose
 
 from multi_sync.msg import RobotPosition, RobotStatus
 
-# turtlesim's world (metres), for "stopped before the wall" checks.
-WORLD_SIZE_M = (500 - 1) / 45.0
-
 
 class TeamWatch:
     """Records what a user would see of robots 0..n-1: poses, commands, statuses, logs."""

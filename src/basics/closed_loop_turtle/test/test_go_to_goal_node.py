@@ -11,6 +11,7 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from course_common.angles import wrap_angle
 from geometry_msgs.msg import Pose2D, Twist
 
 # turtle_lite's rostest helpers (recorders of topics and /rosout, a process runner), reused.
@@ -35,10 +36,6 @@ TICK_SLACK_RAD = 0.005
 SHORT_TURN_RAD = 2 * math.pi - 6.0  # theta 3.0 -> -3.0 the short way; the lab turns 6.0 rad
 
 
-def wrap(angle):
-    return (angle + math.pi) % (2 * math.pi) - math.pi
-
-
 class PoseWatch:
     """The newest Pose2D, the total turn since reset, and the closest approach to a point."""
 
@@ -55,7 +52,7 @@ class PoseWatch:
             return  # the test's own bad pose
         with self._lock:
             if self._latest is not None:
-                self._turned += abs(wrap(msg.theta - self._latest.theta))
+                self._turned += abs(wrap_angle(msg.theta - self._latest.theta))
             self._latest = msg
             if self._point is not None:
                 self._closest = min(self._closest, math.hypot(msg.x - self._point[0],
@@ -109,7 +106,7 @@ class TestGoToGoal(unittest.TestCase):
         pose = self.pose.latest()
         self.assertLess(math.hypot(pose.x - goal[0], pose.y - goal[1]),
                         POSITION_TOL_M + TICK_SLACK_M, 'position at goal %r: %r' % (goal, pose))
-        self.assertLess(abs(wrap(pose.theta - goal[2])), HEADING_TOL_RAD + TICK_SLACK_RAD,
+        self.assertLess(abs(wrap_angle(pose.theta - goal[2])), HEADING_TOL_RAD + TICK_SLACK_RAD,
                         'heading at goal %r: %r' % (goal, pose))
         return pose
 
@@ -121,7 +118,7 @@ class TestGoToGoal(unittest.TestCase):
         start = self.pose.latest()
         # Behind the robot, which starts at the centre heading +x.
         behind = (2.5, 5.0, 3.0)
-        self.assertGreater(abs(wrap(math.atan2(behind[1] - start.y, behind[0] - start.x)
+        self.assertGreater(abs(wrap_angle(math.atan2(behind[1] - start.y, behind[0] - start.x)
                                     - start.theta)), math.pi / 2, 'the first goal is not behind')
         self._drive_to(behind)
         # Same place, heading 3.0 -> -3.0: 6.0 rad apart unwrapped, a turn of more than pi for

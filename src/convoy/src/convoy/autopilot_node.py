@@ -3,20 +3,20 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.arena import CENTRE_M as WORLD_CENTRE_M
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number
+from course_common.planar import is_finite_pose
 from course_common.startup import init_node
 from turtlesim.msg import Pose
 
 from convoy.autopilot_params import choose_name
-from convoy.control import is_finite_pose
 from convoy.path import (
     DEFAULT_HALF_HEIGHT_M,
     DEFAULT_HALF_WIDTH_M,
     DEFAULT_LOOKAHEAD_M,
     DEFAULT_MAX_TURN_RADPS,
     DEFAULT_SPEED_MPS,
-    WORLD_CENTRE_M,
     Lemniscate,
     PurePursuit,
 )

@@ -13,15 +13,14 @@ import sys
 
 import genpy
 import rosbag
+from course_common.pose_topics import POSE_TYPE, pose_topics
 
 from convoy.control import DEFAULT_TOLERANCE_M
 from convoy.plots import plot_gaps, plot_trails
 from convoy.report import (
-    POSE_TYPE,
     chain_pairs,
     natural_key,
     parse_pairs,
-    pose_topics,
     report_pairs,
     table_lines,
 )
@@ -43,12 +42,11 @@ def read_tracks(path):
     try:
         with rosbag.Bag(path) as bag:
             info = bag.get_type_and_topic_info().topics
-            robots = pose_topics({t: i.msg_type for t, i in info.items()})
-            if not robots:
+            by_topic = pose_topics({t: i.msg_type for t, i in info.items()})
+            if not by_topic:
                 raise BagError('%s: no <robot>/pose topic of type %s in this bag (topics: %s)'
                                % (path, POSE_TYPE, ', '.join(sorted(info)) or 'none'))
-            by_topic = {topic: robot for robot, topic in robots.items()}
-            tracks = {robot: [] for robot in robots}
+            tracks = {robot: [] for robot in by_topic.values()}
             for topic, msg, stamp in bag.read_messages(topics=list(by_topic)):
                 tracks[by_topic[topic]].append((stamp.to_sec(), msg.x, msg.y))
     except rosbag.ROSBagUnindexedException:

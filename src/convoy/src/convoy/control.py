@@ -17,21 +17,16 @@ Units: metres, radians, seconds; angles counter-clockwise from +x (turtlesim's f
 import math
 from dataclasses import dataclass
 
+from course_common.angles import wrap_angle
+from course_common.finite import check_fields
+from course_common.planar import STOP, Command, is_finite_pose
+
 # The course's solution values.
 DEFAULT_KP_LV = 0.3  # 1/s: forward speed per metre of distance
 DEFAULT_KP_AV = 1.35  # 1/s: turn rate per radian of heading error
 DEFAULT_TOLERANCE_M = 1.5  # m: closer than this the follower stops
 # The course's literal: turning faster than 1 rad/s, the follower turns on the spot.
 MAX_TURN_WHILE_DRIVING_RADPS = 1.0
-
-
-@dataclass(frozen=True)
-class Pose2D:
-    """A planar pose: x, y in metres, theta in radians."""
-
-    x: float
-    y: float
-    theta: float
 
 
 @dataclass(frozen=True)
@@ -43,37 +38,7 @@ class Gains:
     tolerance_m: float = DEFAULT_TOLERANCE_M
 
     def __post_init__(self):
-        for name in ('kp_lv', 'kp_av', 'tolerance_m'):
-            value = getattr(self, name)
-            if not isinstance(value, (int, float)) or isinstance(value, bool):
-                raise ValueError('%s must be a number, got %r' % (name, value))
-            if not math.isfinite(value) or value < 0.0:
-                raise ValueError('%s must be finite and >= 0, got %r' % (name, value))
-
-
-@dataclass(frozen=True)
-class Command:
-    """A follower command: forward speed (m/s) and turn rate (rad/s)."""
-
-    linear_mps: float
-    angular_radps: float
-
-
-STOP = Command(0.0, 0.0)
-
-
-def wrap_angle(angle_rad):
-    """Wrap an angle into [-pi, pi). Raises ValueError if it is not finite."""
-    if not math.isfinite(angle_rad):
-        raise ValueError('angle must be finite, got %r' % (angle_rad,))
-    wrapped = angle_rad - 2.0 * math.pi * math.floor((angle_rad + math.pi) / (2.0 * math.pi))
-    # Rounding can land exactly on +pi (e.g. for -pi - tiny); keep the half-open interval.
-    return -math.pi if wrapped >= math.pi else wrapped
-
-
-def is_finite_pose(pose):
-    """True if x, y and theta are all finite numbers."""
-    return all(math.isfinite(v) for v in (pose.x, pose.y, pose.theta))
+        check_fields(self, low=0.0)
 
 
 def distance(leader, follower):

@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number, check_text
+from course_common.planar import is_finite_pose
 from course_common.startup import init_node
 from turtlesim.msg import Pose
 
@@ -14,7 +15,6 @@ from convoy.control import (
     DEFAULT_TOLERANCE_M,
     Gains,
     follow,
-    is_finite_pose,
 )
 from convoy.ros_io import CommandPublisher, pose_from_msg
 

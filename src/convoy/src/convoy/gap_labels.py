@@ -6,6 +6,8 @@ Positions are (x, y) in metres in the world frame.
 import math
 from collections import namedtuple
 
+from course_common.finite import is_finite_number
+
 GapLabel = namedtuple('GapLabel', 'follower leader gap_m mid_x mid_y text')
 """One follower's distance to its leader, the midpoint between them, and the label's text."""
 
@@ -29,8 +31,7 @@ def chain_links(robots):
 def gap_label(follower, leader, follower_xy, leader_xy):
     """The GapLabel of follower behind leader. Raises ValueError on non-finite positions."""
     values = tuple(follower_xy) + tuple(leader_xy)
-    if len(values) != 4 or not all(isinstance(v, (int, float)) and math.isfinite(v)
-                                   for v in values):
+    if len(values) != 4 or not all(is_finite_number(v) for v in values):
         raise ValueError('positions of %s and %s must be finite (x, y): %r, %r'
                          % (follower, leader, follower_xy, leader_xy))
     fx, fy, lx, ly = (float(v) for v in values)

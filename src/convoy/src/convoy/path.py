@@ -10,11 +10,11 @@ Units: metres, radians, seconds; angles counter-clockwise from +x (turtlesim's f
 import math
 from dataclasses import dataclass
 
-from convoy.control import Command, Pose2D, is_finite_pose, wrap_angle
+from course_common.angles import wrap_angle
+from course_common.arena import CENTRE_M, WORLD_SIZE_M
+from course_common.finite import check_finite
+from course_common.planar import Command, Pose, is_finite_pose
 
-# turtlesim's world: (500 - 1) px / 45 px per metre, turtle1 spawned at its centre.
-WORLD_SIZE_M = 499.0 / 45.0
-WORLD_CENTRE_M = WORLD_SIZE_M / 2.0
 # Default figure eight: 9 m x 8 m, at least 1 m from every wall, 38.9 m long (78 s a lap).
 # Large lobes on purpose: each follower cuts inside its leader's curves, so down a long chain
 # the loops shrink; with 4 m x 2 m lobes the tail of a 10-robot chain ends up at a standstill.
@@ -32,29 +32,20 @@ _SEARCH_STEPS = 80
 _GLOBAL_STEPS = 720
 
 
-def _check_finite_positive(name, value):
-    if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
-        raise ValueError('%s must be a finite number, got %r' % (name, value))
-    if value <= 0.0:
-        raise ValueError('%s must be > 0, got %r' % (name, value))
-
-
 @dataclass(frozen=True)
 class Lemniscate:
     """A figure eight p(s) = (cx + a sin s, cy + h sin 2s); raises ValueError if degenerate."""
 
-    centre_x: float = WORLD_CENTRE_M
-    centre_y: float = WORLD_CENTRE_M
+    centre_x: float = CENTRE_M
+    centre_y: float = CENTRE_M
     half_width: float = DEFAULT_HALF_WIDTH_M
     half_height: float = DEFAULT_HALF_HEIGHT_M
 
     def __post_init__(self):
-        for name in ('centre_x', 'centre_y'):
-            value = getattr(self, name)
-            if not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise ValueError('%s must be a finite number, got %r' % (name, value))
-        _check_finite_positive('half_width', self.half_width)
-        _check_finite_positive('half_height', self.half_height)
+        check_finite('centre_x', self.centre_x)
+        check_finite('centre_y', self.centre_y)
+        check_finite('half_width', self.half_width, low=0.0, low_open=True)
+        check_finite('half_height', self.half_height, low=0.0, low_open=True)
 
     def point(self, s):
         """(x, y) of the path at parameter s."""
@@ -87,13 +78,11 @@ class PurePursuit:
 
     def __init__(self, path, speed_mps=DEFAULT_SPEED_MPS, lookahead_m=DEFAULT_LOOKAHEAD_M,
                  max_turn_radps=DEFAULT_MAX_TURN_RADPS):
-        _check_finite_positive('speed_mps', speed_mps)
-        _check_finite_positive('lookahead_m', lookahead_m)
-        _check_finite_positive('max_turn_radps', max_turn_radps)
         self.path = path
-        self.speed_mps = float(speed_mps)
-        self.lookahead_m = float(lookahead_m)
-        self.max_turn_radps = float(max_turn_radps)
+        self.speed_mps = check_finite('speed_mps', speed_mps, low=0.0, low_open=True)
+        self.lookahead_m = check_finite('lookahead_m', lookahead_m, low=0.0, low_open=True)
+        self.max_turn_radps = check_finite('max_turn_radps', max_turn_radps, low=0.0,
+                                           low_open=True)
         self.progress = None  # path parameter of the closest point; None before the first pose
 
     def _closest(self, pose):
@@ -117,7 +106,7 @@ class PurePursuit:
         return min(candidates, key=cost)
 
     def command(self, pose):
-        """The command for the robot at `pose` (Pose2D). Raises ValueError if it is not finite."""
+        """The command for the robot at `pose` (a planar Pose). ValueError if it is not finite."""
         if not is_finite_pose(pose):
             raise ValueError('pose must be finite, got %r' % (pose,))
         s = self._closest(pose)
@@ -143,6 +132,6 @@ class PurePursuit:
 def step_unicycle(pose, command, dt_s):
     """turtlesim's update: turn first, then move along the new heading (TURTLESIM.md 1.6)."""
     theta = wrap_angle(pose.theta + command.angular_radps * dt_s)
-    return Pose2D(pose.x + math.cos(theta) * command.linear_mps * dt_s,
-                  pose.y + math.sin(theta) * command.linear_mps * dt_s,
-                  theta)
+    return Pose(pose.x + math.cos(theta) * command.linear_mps * dt_s,
+                pose.y + math.sin(theta) * command.linear_mps * dt_s,
+                theta)

@@ -1,5 +1,5 @@
 """PNG figures of a convoy report (matplotlib, headless Agg backend): trails and gaps."""
-from convoy.path import WORLD_SIZE_M
+from course_common.arena import WORLD_SIZE_M
 
 
 def _pyplot():

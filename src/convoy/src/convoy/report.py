@@ -2,38 +2,14 @@
 
 Pure logic shared by bag_report and convoy_demo (no rospy, no rosbag). A track is one robot's
 samples (t_s, x_m, y_m) in time order, as in convoy.metrics; a robot is named after the
-namespace of its pose topic (/robot2/pose -> robot2).
+namespace of its pose topic (/robot2/pose -> robot2: course_common.pose_topics).
 """
 import re
 from dataclasses import dataclass
 
 from convoy.metrics import FollowerStats, follower_stats, gap_series
 
-POSE_SUFFIX = '/pose'
-POSE_TYPE = 'turtlesim/Pose'
 _DIGITS = re.compile(r'(\d+)')
-
-
-def robot_of_topic(topic):
-    """The robot of a pose topic: '/robot2/pose' -> 'robot2', '/a/b/pose' -> 'a/b'.
-
-    None when the topic is not '<name>/pose' (cmd_vel, a bare '/pose', 'robot2/pose_x').
-    """
-    if not topic.endswith(POSE_SUFFIX):
-        return None
-    robot = topic[:-len(POSE_SUFFIX)].strip('/')
-    return robot or None
-
-
-def pose_topics(topic_info):
-    """{robot: topic} of the turtlesim/Pose '<robot>/pose' topics of a bag's topic table
-    ({topic: msg_type}); other types and names are left out."""
-    robots = {}
-    for topic, msg_type in topic_info.items():
-        robot = robot_of_topic(topic)
-        if robot is not None and msg_type == POSE_TYPE:
-            robots[robot] = topic
-    return robots
 
 
 def natural_key(name):

@@ -2,14 +2,13 @@
 import contextlib
 
 import rospy
+from course_common.planar import STOP, Pose
 from geometry_msgs.msg import Twist
-
-from convoy.control import STOP, Pose2D
 
 
 def pose_from_msg(msg):
-    """A turtlesim/Pose message as a model Pose2D (not checked for finiteness)."""
-    return Pose2D(float(msg.x), float(msg.y), float(msg.theta))
+    """A turtlesim/Pose message as a model planar Pose (not checked for finiteness)."""
+    return Pose(float(msg.x), float(msg.y), float(msg.theta))
 
 
 class CommandPublisher:

@@ -2,8 +2,10 @@
 import math
 
 import pytest
-from convoy.control import Command, Pose2D, wrap_angle
-from convoy.path import WORLD_CENTRE_M, WORLD_SIZE_M, Lemniscate, PurePursuit, step_unicycle
+from convoy.path import Lemniscate, PurePursuit, step_unicycle
+from course_common.angles import wrap_angle
+from course_common.arena import CENTRE_M, WORLD_SIZE_M
+from course_common.planar import Command, Pose
 
 TOL = 1e-9  # absolute tolerance for closed-form comparisons
 SAMPLES = 2000
@@ -69,13 +71,13 @@ def test_bad_pursuit_raises(kwargs):
 
 def test_pursuit_rejects_non_finite_pose():
     with pytest.raises(ValueError):
-        PurePursuit(PATH).command(Pose2D(float('nan'), 1.0, 0.0))
+        PurePursuit(PATH).command(Pose(float('nan'), 1.0, 0.0))
 
 
 @pytest.mark.parametrize('start', [
-    Pose2D(WORLD_CENTRE_M, WORLD_CENTRE_M, 0.0),   # where turtlesim spawns turtle1
-    Pose2D(WORLD_CENTRE_M, WORLD_CENTRE_M, 2.5),   # same spot, facing the other branch
-    Pose2D(8.0, 4.0, -2.0),                        # off the path, facing away
+    Pose(CENTRE_M, CENTRE_M, 0.0),   # where turtlesim spawns turtle1
+    Pose(CENTRE_M, CENTRE_M, 2.5),   # same spot, facing the other branch
+    Pose(8.0, 4.0, -2.0),                        # off the path, facing away
 ])
 def test_pursuit_drives_laps_inside_world(start):
     # Two laps at turtlesim's 16 ms tick: the robot stays near the path, inside the world,
@@ -99,5 +101,5 @@ def test_pursuit_drives_laps_inside_world(start):
 
 
 def test_step_unicycle_turns_then_moves():
-    pose = step_unicycle(Pose2D(1.0, 1.0, 0.0), Command(1.0, math.pi / 2 / DT_S), DT_S)
+    pose = step_unicycle(Pose(1.0, 1.0, 0.0), Command(1.0, math.pi / 2 / DT_S), DT_S)
     assert (pose.x, pose.y, pose.theta) == pytest.approx((1.0, 1.0 + DT_S, math.pi / 2), abs=TOL)

@@ -1,4 +1,4 @@
-"""Unit tests of convoy.report: robots from topics, pairing, the report window, the table."""
+"""Unit tests of convoy.report: pairing, the report window, the table."""
 import math
 
 import pytest
@@ -6,41 +6,11 @@ from convoy.report import (
     chain_pairs,
     natural_key,
     parse_pairs,
-    pose_topics,
     report_pairs,
-    robot_of_topic,
     table_lines,
 )
 
 TOL = 1e-9  # absolute tolerance: closed-form arithmetic only
-
-
-@pytest.mark.parametrize('topic, robot', [
-    ('/robot1/pose', 'robot1'),
-    ('robot2/pose', 'robot2'),
-    ('/turtle1/pose', 'turtle1'),
-    ('/team/robot3/pose', 'team/robot3'),
-    ('/robot1/cmd_vel', None),
-    ('/pose', None),
-    ('/robot1/pose_stamped', None),
-    ('/robot1/pose/x', None),
-    ('', None),
-])
-def test_robot_of_topic(topic, robot):
-    assert robot_of_topic(topic) == robot
-
-
-@pytest.mark.parametrize('types, robots', [
-    ({'/robot1/pose': 'turtlesim/Pose', '/robot2/pose': 'turtlesim/Pose',
-      '/robot1/cmd_vel': 'geometry_msgs/Twist', '/rosout': 'rosgraph_msgs/Log'},
-     {'robot1': '/robot1/pose', 'robot2': '/robot2/pose'}),
-    ({'/robot1/pose': 'geometry_msgs/Pose2D', '/robot2/pose': 'turtlesim/Pose'},
-     {'robot2': '/robot2/pose'}),
-    ({'/robot1/cmd_vel': 'geometry_msgs/Twist', '/pose': 'turtlesim/Pose'}, {}),
-    ({}, {}),
-])
-def test_pose_topics(types, robots):
-    assert pose_topics(types) == robots
 
 
 @pytest.mark.parametrize('names, ordered', [

@@ -6,8 +6,7 @@ what was expected: ``parameter ~speed_mps = -0.2: expected a finite number in (0
 The nodes read their parameters once through param_loader.load_or_exit, which logs that
 message as FATAL and exits non-zero.
 """
-import math
-
+from course_common.finite import is_finite_number
 from course_common.graph_names import normalize_namespace
 
 
@@ -20,10 +19,6 @@ class ParamError(ValueError):
         self.name = name
         self.value = value
         self.expected = expected
-
-
-def _is_number(value):
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 def _range_text(low, high, low_open, high_open):
@@ -48,8 +43,7 @@ def check_number(name, value, low=None, high=None, low_open=False, high_open=Fal
     low/high are inclusive unless low_open/high_open; None means unbounded on that side.
     """
     expected = 'a finite number' + _range_text(low, high, low_open, high_open)
-    if not _is_number(value) or not math.isfinite(value) \
-            or not _in_range(value, low, high, low_open, high_open):
+    if not is_finite_number(value) or not _in_range(value, low, high, low_open, high_open):
         raise ParamError(name, value, expected)
     return float(value)
 

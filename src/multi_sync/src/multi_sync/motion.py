@@ -6,20 +6,19 @@ theta in radians counter-clockwise from +x (turtlesim's Pose convention).
 import math
 from dataclasses import dataclass
 
+# turtlesim's square world and its middle, where turtlesim's first turtle starts.
+from course_common.arena import CENTRE_M, WORLD_SIZE_M
+from course_common.finite import is_finite_number
+
 from multi_sync.team import MAX_ROBOTS, valid_robot_id
 
-# turtlesim's world is a square of (500 - 1) px / 45 px per metre on a side.
-WORLD_SIZE_M = (500 - 1) / 45.0
-# turtlesim's first turtle starts in the middle of the world.
-CENTRE_M = WORLD_SIZE_M / 2.0
 # The lesson's robots stand 2 m apart in a 2x2 square; the grid keeps that spacing.
 GRID_STEP_M = 2.0
 
 
 def _check_finite(**values):
     for name, value in values.items():
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not math.isfinite(value):
+        if not is_finite_number(value):
             raise ValueError('%s must be a finite number, got %r' % (name, value))
 
 

@@ -25,6 +25,12 @@ import math
 from dataclasses import dataclass
 from enum import Enum
 
+from course_common.angles import wrap_angle
+from course_common.arena import WORLD_SIZE_M, inside
+from course_common.finite import check_fields
+from course_common.planar import STOP, Command
+from course_common.planar import check_pose as check_finite_pose
+
 # The lab's values.
 DEFAULT_K_RHO = 3.14  # 1/s: forward speed per metre of distance
 DEFAULT_K_ALPHA = 5.0  # 1/s: turn rate per radian of bearing error
@@ -35,48 +41,17 @@ DEFAULT_HEADING_TOLERANCE_RAD = 0.05  # the lab's "while not np.abs(beta) < 0.05
 # k_rho * 15.7 m = 49 m/s across the turtle world.
 DEFAULT_MAX_LINEAR_MPS = 1.2
 DEFAULT_MAX_ANGULAR_RADPS = math.radians(300.0)
-# turtlesim's world: (500 - 1) px / 45 px per metre, both axes, origin at the bottom left.
-WORLD_SIZE_M = 11.088889
 
 
 class GoalError(ValueError):
     """A goal or pose the controller refuses; the message says what was expected."""
 
 
-@dataclass(frozen=True)
-class Pose:
-    """A planar pose: x, y in metres, theta in radians (geometry_msgs/Pose2D's fields)."""
+class _PositiveFields:
+    """Checks on construction that every field of the dataclass is a finite number > 0."""
 
-    x: float
-    y: float
-    theta: float
-
-
-@dataclass(frozen=True)
-class Command:
-    """A robot command: forward speed (m/s) and turn rate (rad/s)."""
-
-    linear_mps: float
-    angular_radps: float
-
-
-STOP = Command(0.0, 0.0)
-
-
-def _check_number(name, value):
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError('%s must be a number, got %r' % (name, value))
-    if not math.isfinite(value):
-        raise ValueError('%s must be finite, got %r' % (name, value))
-
-
-def _check_positive_fields(obj):
-    """Every field of the dataclass obj a finite number > 0 (ValueError naming it)."""
-    for name in obj.__dataclass_fields__:
-        value = getattr(obj, name)
-        _check_number(name, value)
-        if value <= 0.0:
-            raise ValueError('%s must be > 0, got %r' % (name, value))
+    def __post_init__(self):
+        check_fields(self, low=0.0, low_open=True)
 
 
 @dataclass(frozen=True)
@@ -88,8 +63,8 @@ class Gains:
     k_beta: float = DEFAULT_K_BETA
 
     def __post_init__(self):
-        for name in ('k_rho', 'k_alpha', 'k_beta'):
-            _check_number(name, getattr(self, name))
+        check_fields(self)
+        # The lab's stability conditions, in its words (the node's FATAL line quotes them).
         if self.k_rho <= 0.0:
             raise ValueError('k_rho must be > 0, got %r' % self.k_rho)
         if self.k_beta >= 0.0:
@@ -100,25 +75,19 @@ class Gains:
 
 
 @dataclass(frozen=True)
-class Tolerances:
+class Tolerances(_PositiveFields):
     """When a goal counts as reached: distance (m) and heading error (rad), both > 0."""
 
     position_m: float = DEFAULT_POSITION_TOLERANCE_M
     heading_rad: float = DEFAULT_HEADING_TOLERANCE_RAD
 
-    def __post_init__(self):
-        _check_positive_fields(self)
-
 
 @dataclass(frozen=True)
-class Limits:
+class Limits(_PositiveFields):
     """Top speeds, both > 0: forward (m/s) and turn rate (rad/s)."""
 
     max_linear_mps: float = DEFAULT_MAX_LINEAR_MPS
     max_angular_radps: float = DEFAULT_MAX_ANGULAR_RADPS
-
-    def __post_init__(self):
-        _check_positive_fields(self)
 
 
 class Phase(Enum):
@@ -139,21 +108,12 @@ class Step:
     reached_orientation: bool = False
 
 
-def wrap_angle(angle_rad):
-    """Wrap into [-pi, pi), the lab's np.mod(angle + pi, 2 pi) - pi. ValueError if not finite."""
-    if not math.isfinite(angle_rad):
-        raise ValueError('angle must be finite, got %r' % (angle_rad,))
-    wrapped = (angle_rad + math.pi) % (2.0 * math.pi) - math.pi
-    # Rounding can land exactly on +pi (e.g. for -pi - tiny); keep the half-open interval.
-    return -math.pi if wrapped >= math.pi else wrapped
-
-
 def check_pose(pose):
     """The pose if x, y and theta are finite; GoalError otherwise."""
-    if not all(math.isfinite(v) for v in (pose.x, pose.y, pose.theta)):
-        raise GoalError('pose (x=%r, y=%r, theta=%r) has a non-finite field: expected finite '
-                        'numbers' % (pose.x, pose.y, pose.theta))
-    return pose
+    try:
+        return check_finite_pose(pose)
+    except ValueError as err:
+        raise GoalError(str(err)) from None
 
 
 def check_goal(goal, world_size_m=WORLD_SIZE_M):
@@ -161,10 +121,11 @@ def check_goal(goal, world_size_m=WORLD_SIZE_M):
 
     GoalError otherwise, naming the goal and what was expected.
     """
-    if not all(math.isfinite(v) for v in (goal.x, goal.y, goal.theta)):
-        raise GoalError('goal (x=%r, y=%r, theta=%r) has a non-finite field: expected finite '
-                        'numbers' % (goal.x, goal.y, goal.theta))
-    if not (0.0 <= goal.x <= world_size_m and 0.0 <= goal.y <= world_size_m):
+    try:
+        check_finite_pose(goal, 'goal')
+    except ValueError as err:
+        raise GoalError(str(err)) from None
+    if not inside(goal.x, goal.y, world_size_m):
         raise GoalError('goal (x=%.3f, y=%.3f) is outside the world: expected 0 <= x, y <= %.3f m'
                         % (goal.x, goal.y, world_size_m))
     return goal

@@ -4,8 +4,10 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.arena import WORLD_SIZE_M
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number
+from course_common.planar import Pose
 from course_common.startup import init_node
 from geometry_msgs.msg import Pose2D, Twist
 
@@ -17,12 +19,10 @@ from closed_loop_turtle.go_to_goal import (
     DEFAULT_MAX_ANGULAR_RADPS,
     DEFAULT_MAX_LINEAR_MPS,
     DEFAULT_POSITION_TOLERANCE_M,
-    WORLD_SIZE_M,
     Gains,
     GoalError,
     Limits,
     Phase,
-    Pose,
     Tolerances,
     check_goal,
     check_pose,

@@ -5,15 +5,15 @@ Units: m/s and rad/s for velocities, metres and radians for poses.
 """
 import math
 
+from course_common.finite import is_finite_number
+
 DEFAULT_DIVISOR = 4.0  # the lab's "robot_velocity.linear.x / 4"
 
 
 def check_divisor(divisor):
     """The divisor as a float; ValueError unless it is a finite number > 0."""
-    if isinstance(divisor, bool) or not isinstance(divisor, (int, float)):
-        raise ValueError('divisor must be a number, got %r' % (divisor,))
-    if not math.isfinite(divisor) or divisor <= 0.0:
-        raise ValueError('divisor must be finite and > 0, got %r' % (divisor,))
+    if not is_finite_number(divisor) or divisor <= 0.0:
+        raise ValueError('divisor = %r: expected a finite number > 0' % (divisor,))
     return float(divisor)
 
 

@@ -39,12 +39,12 @@ def test_wrong_length_is_refused():
 
 
 @pytest.mark.parametrize('divisor, words', [
-    (0, 'finite and > 0'),
-    (-4, 'finite and > 0'),
-    (math.nan, 'finite and > 0'),
-    (math.inf, 'finite and > 0'),
-    ('4', 'must be a number'),
-    (True, 'must be a number'),
+    (0, 'divisor = 0: expected a finite number > 0'),
+    (-4, 'divisor = -4: expected a finite number > 0'),
+    (math.nan, 'divisor = nan: expected a finite number > 0'),
+    (math.inf, 'divisor = inf: expected a finite number > 0'),
+    ('4', "divisor = '4': expected a finite number > 0"),
+    (True, 'divisor = True: expected a finite number > 0'),
 ])
 def test_bad_divisor(divisor, words):
     with pytest.raises(ValueError, match=words):

@@ -8,9 +8,8 @@ canvas, never on the canvas itself, so color_sensor never sees them (as in turtl
 import math
 import os
 
+from course_common.arena import METER_PX, WORLD_SIZE_M
 from PIL import Image, ImageDraw
-
-from .world import METER_PX, WORLD_SIZE
 
 SHELL_RGB = (46, 139, 87)
 SHELL_EDGE_RGB = (20, 70, 40)
@@ -38,7 +37,7 @@ def _place(points, cx, cy, theta):
 def draw_turtle(draw, x, y, theta):
     """Draw one turtle sprite at world pose (x, y, theta) on a Pillow ImageDraw."""
     cx = x * METER_PX
-    cy = (WORLD_SIZE - y) * METER_PX
+    cy = (WORLD_SIZE_M - y) * METER_PX
     for leg in _LEGS:
         draw.polygon(_place(leg, cx, cy, theta), fill=SKIN_RGB, outline=SHELL_EDGE_RGB)
     draw.polygon(_place(_TAIL, cx, cy, theta), fill=SKIN_RGB, outline=SHELL_EDGE_RGB)

@@ -1,14 +1,16 @@
 """Follows every turtle's pose topic on the master: subscribes on spawn, drops on kill.
 
-ROS glue shared by pose_to_tf and lesson_markers; the choice of topics is team_frames'.
+ROS glue shared by pose_to_tf and lesson_markers; the choice of topics is
+course_common.pose_topics'.
 """
 
 import threading
 
 import rospy
+from course_common.pose_topics import pose_topics
 from turtlesim.msg import Pose
 
-from turtle_lite.team_frames import diff_topics, pose_topics
+from turtle_lite.team_frames import diff_topics
 
 QUEUE_SIZE = 1  # only the newest pose of each turtle matters to tf and to rviz
 

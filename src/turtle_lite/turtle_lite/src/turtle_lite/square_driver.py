@@ -9,6 +9,8 @@ import struct
 from dataclasses import dataclass
 from enum import Enum
 
+from course_common.planar import Pose
+
 # turtlesim's draw_square uses this truncated literal (#define PI 3.141592), not math.pi;
 # it shows in the goal headings it logs (1.570796).
 PI = 3.141592
@@ -28,26 +30,18 @@ class State(Enum):
 
 
 @dataclass(frozen=True)
-class Goal:
-    """A goal pose: x, y in m, theta in rad. Stored as float32, like turtlesim's Pose goal."""
-
-    x: float
-    y: float
-    theta: float
-
-
-@dataclass(frozen=True)
 class Step:
     """What one tick decided.
 
     command: (linear_x, angular_z) to publish, or None to publish nothing this tick.
     reached: the turtle came to rest at the goal ("Reached goal").
-    new_goal: a goal was set this tick ("New goal [...]"), else None.
+    new_goal: a goal was set this tick ("New goal [...]"), else None: x, y in m, theta in rad,
+        each rounded to float32 like turtlesim's Pose goal.
     """
 
     command: tuple = None
     reached: bool = False
-    new_goal: Goal = None
+    new_goal: Pose = None
 
 
 def _f32(value):
@@ -56,7 +50,7 @@ def _f32(value):
 
 
 def _goal_ahead(pose):
-    return Goal(
+    return Pose(
         _f32(math.cos(pose.theta) * SIDE_M + pose.x),
         _f32(math.sin(pose.theta) * SIDE_M + pose.y),
         _f32(pose.theta),
@@ -68,7 +62,7 @@ def _goal_turned(pose):
     theta = math.fmod(pose.theta + PI / 2.0, 2 * PI)
     if theta >= PI:
         theta -= 2 * PI
-    return Goal(_f32(pose.x), _f32(pose.y), _f32(theta))
+    return Pose(_f32(pose.x), _f32(pose.y), _f32(theta))
 
 
 def _check_pose(pose):

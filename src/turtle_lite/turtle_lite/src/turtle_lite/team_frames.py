@@ -1,55 +1,19 @@
-"""Every turtle of a simulator as a tf frame: pose topics found on the master, pose -> transform.
+"""Every turtle of a simulator as a tf frame: changes in its pose topics, pose -> transform.
 
-No rospy. The nodes pass in what the master reports (``getPublishedTopics``: a list of
-``[topic, type]``) and poses as plain numbers. Units are metres and radians; the transform is
-the one the ROS tf2 tutorials broadcast for turtlesim: parent ``world``, translation
-(x, y, 0), rotation the yaw theta about z.
+No rospy. The nodes find the pose topics with course_common.pose_topics (a turtle's frame is
+the robot name it gives, e.g. '/sim/turtle1/pose' below '/sim' -> 'turtle1') and pass poses
+in as plain numbers. Units are metres and radians; the transform is the one the ROS tf2
+tutorials broadcast for turtlesim: parent ``world``, translation (x, y, 0), rotation the yaw
+theta about z (counter-clockwise positive).
 """
 
 import math
 from collections import namedtuple
 
-from course_common.graph_names import normalize_namespace
-
-#: The message type whose topics are turtles' poses (turtlesim's, ours is the same).
-POSE_TYPE = 'turtlesim/Pose'
-POSE_LEAF = 'pose'
+from course_common.finite import check_finite
 
 Transform = namedtuple('Transform', 'x y z qx qy qz qw')
 """Translation (m) and unit quaternion (x, y, z, w) of a frame in its parent."""
-
-
-def frame_for_pose_topic(topic, namespace='/'):
-    """The frame name of a turtle's pose topic, or None when the topic is not one below namespace.
-
-    '/robot1/pose' -> 'robot1'; with namespace '/turtlesim1', '/turtlesim1/turtle1/pose' ->
-    'turtle1'; with namespace '/', the same topic gives 'turtlesim1/turtle1', so two
-    simulators' turtle1 stay two frames. A bare '/pose' is no turtle's (no name).
-    """
-    ns = normalize_namespace(namespace)
-    if not topic.startswith(ns):
-        return None
-    parts = topic[len(ns):].split('/')
-    if len(parts) < 2 or parts[-1] != POSE_LEAF or not all(parts[:-1]):
-        return None
-    return '/'.join(parts[:-1])
-
-
-def pose_topics(published, namespace='/', only=()):
-    """{topic: frame} for the turtlesim/Pose topics below namespace in the master's list.
-
-    published: iterable of (topic, type) pairs, as getPublishedTopics returns. only: frame
-    names to keep (empty keeps all).
-    """
-    keep = set(only)
-    found = {}
-    for topic, msg_type in published:
-        if msg_type != POSE_TYPE:
-            continue
-        frame = frame_for_pose_topic(topic, namespace)
-        if frame is not None and (not keep or frame in keep):
-            found[topic] = frame
-    return found
 
 
 def diff_topics(old, new):
@@ -65,8 +29,6 @@ def diff_topics(old, new):
 def pose_to_transform(x, y, theta):
     """The Transform of a turtle at (x, y) m heading theta rad. Raises ValueError if not finite."""
     for label, value in (('x', x), ('y', y), ('theta', theta)):
-        if not isinstance(value, (int, float)) or isinstance(value, bool) \
-                or not math.isfinite(value):
-            raise ValueError('pose %s = %r: expected a finite number' % (label, value))
+        check_finite('pose ' + label, value)
     half = 0.5 * theta
     return Transform(float(x), float(y), 0.0, 0.0, 0.0, math.sin(half), math.cos(half))

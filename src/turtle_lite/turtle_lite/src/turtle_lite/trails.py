@@ -6,12 +6,13 @@ No rospy: points are (x, y) in metres in the world frame.
 import math
 from collections import deque
 
-from .world import WORLD_SIZE
+from course_common.arena import WORLD_SIZE_M
+from course_common.finite import is_finite_number
 
 
-def arena_outline(size_m=WORLD_SIZE):
+def arena_outline(size_m=WORLD_SIZE_M):
     """The closed square (0, 0)-(size, size) as 5 points, the walls turtlesim clamps at."""
-    if not isinstance(size_m, (int, float)) or not math.isfinite(size_m) or size_m <= 0:
+    if not is_finite_number(size_m) or size_m <= 0:
         raise ValueError('arena size %r: expected a finite number > 0 (m)' % (size_m,))
     s = float(size_m)
     return [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s), (0.0, 0.0)]
@@ -27,8 +28,7 @@ class Trail:
     def __init__(self, max_points, spacing_m):
         if not isinstance(max_points, int) or isinstance(max_points, bool) or max_points < 2:
             raise ValueError('trail length %r: expected an integer >= 2 (points)' % (max_points,))
-        if not isinstance(spacing_m, (int, float)) or not math.isfinite(spacing_m) \
-                or spacing_m < 0:
+        if not is_finite_number(spacing_m) or spacing_m < 0:
             raise ValueError('trail spacing %r: expected a finite number >= 0 (m)'
                              % (spacing_m,))
         self._points = deque(maxlen=max_points)

@@ -26,6 +26,7 @@ import threading
 import time
 
 import rospy
+from course_common.arena import SPAWN_M
 from course_common.graph_names import graph_name_error
 from course_common.rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
 from course_common.startup import init_node
@@ -49,7 +50,7 @@ from .tick_loop import TickLoop
 from .tick_publish import publish_tick
 from .turtle_handle import TurtleHandle
 from .wall_log import WallLog
-from .world import CENTER, DT_S, MAX_ABS_VELOCITY, World
+from .world import DT_S, MAX_ABS_VELOCITY, World
 
 #: Throttle period of the WARNs about bad input (a bad publisher can repeat at any rate).
 BAD_INPUT_WARN_PERIOD_S = 1.0
@@ -94,7 +95,7 @@ class TurtleSimNode:
             rospy.Service('~save_image', SaveImage, self.handle_save_image),
         ]
         rospy.loginfo('Starting turtlesim with node name %s', self.node_name)
-        self.spawn('', CENTER, CENTER, 0.0)
+        self.spawn('', SPAWN_M, SPAWN_M, 0.0)
 
     # ------------------------------------------------------------------ turtles
     def spawn(self, name, x, y, theta):
@@ -169,7 +170,7 @@ class TurtleSimNode:
             # turtle's resources are unregistered from the master.
             self._reset_pool = old
             try:
-                self.spawn('', CENTER, CENTER, 0.0)
+                self.spawn('', SPAWN_M, SPAWN_M, 0.0)
             finally:
                 leftovers, self._reset_pool = self._reset_pool, None
                 for handle in leftovers:

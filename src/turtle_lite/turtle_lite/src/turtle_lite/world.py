@@ -11,16 +11,12 @@ from collections import namedtuple
 
 import numpy as np
 
+# The arena (canvas, scale, world size, turtle1's spawn point) is course_common.arena's: the
+# lessons use the same numbers without importing the simulator.
+from course_common.arena import CANVAS_PX, METER_PX, WORLD_SIZE_M
+
 from .canvas import Canvas
 
-#: Pixels per metre: the height of turtlesim's first sprite.
-METER_PX = 45.0
-#: Canvas size in pixels (turtlesim's window).
-CANVAS_PX = 500
-#: World width and height in metres, (500 - 1) / 45 = 11.088889, as turtlesim computes it.
-WORLD_SIZE = (CANVAS_PX - 1) / METER_PX
-#: turtle1's spawn point, W / 2 rounded to float32 (spawnTurtle takes float): 5.5444446.
-CENTER = float(np.float32(WORLD_SIZE / 2.0))
 #: The Qt timer interval that turtlesim also uses as dt; real elapsed time is never used.
 DT_S = 0.016
 #: turtlesim's truncated pi literal used in the heading wrap: result in [-P, P).
@@ -45,9 +41,11 @@ clamped, with the unclamped internal x and y_s (the values turtlesim's WARN prin
 _FIELDS = ('x', 'ys', 'theta', 'vx', 'vy', 'w', 'last_cmd')
 
 
-def wrap_angle(theta):
+def turtlesim_wrap_angle(theta):
     """turtlesim's heading wrap: theta - 2P floor((theta + P) / 2P), P = 3.14159265.
 
+    Not the lessons' course_common.angles.wrap_angle, on purpose: turtlesim wraps with a
+    truncated pi, so headings near +-pi come out where turtlesim puts them (to the float32).
     Works on floats and arrays; the result lies in [-P, P). For huge |theta| (where the
     formula loses all precision) the value is first reduced exactly with fmod.
     """
@@ -133,7 +131,7 @@ class World:
         theta = _finite_f32('theta', theta)
         pos = int(np.searchsorted(np.array(self.names, dtype=object), name)) if self.names \
             else 0
-        values = {'x': x, 'ys': WORLD_SIZE - y, 'theta': theta, 'vx': 0.0, 'vy': 0.0,
+        values = {'x': x, 'ys': WORLD_SIZE_M - y, 'theta': theta, 'vx': 0.0, 'vy': 0.0,
                   'w': 0.0, 'last_cmd': 0.0}
         for f in _FIELDS:
             setattr(self, f, np.insert(getattr(self, f), pos, values[f]))
@@ -242,7 +240,7 @@ class World:
             idx = slice(None)
         out = np.empty((len(self.x[idx]), 5), dtype=np.float32)
         out[:, 0] = self.x[idx]
-        out[:, 1] = WORLD_SIZE - self.ys[idx]
+        out[:, 1] = WORLD_SIZE_M - self.ys[idx]
         out[:, 2] = self.theta[idx]
         out[:, 3] = np.hypot(self.vx[idx], self.vy[idx])
         out[:, 4] = self.w[idx]
@@ -262,7 +260,7 @@ class World:
                     self.ys[i] -= math.sin(self.theta[i]) * req[1]
                 else:
                     self.x[i] = req[1]
-                    self.ys[i] = max(0.0, WORLD_SIZE - req[2])
+                    self.ys[i] = max(0.0, WORLD_SIZE_M - req[2])
                     self.theta[i] = req[3]
                 if self.pen_on[i]:
                     canvas.draw_line(self.x[i] * METER_PX, self.ys[i] * METER_PX,
@@ -294,19 +292,19 @@ class World:
         old_x = self.x.copy()
         old_ys = self.ys.copy()
         # Heading first, then position with the new heading (semi-implicit Euler).
-        theta = wrap_angle(self.theta + self.w * dt)
+        theta = turtlesim_wrap_angle(self.theta + self.w * dt)
         cos_t = np.cos(theta)
         sin_t = np.sin(theta)
         x = self.x + (cos_t * self.vx - sin_t * self.vy) * dt
         ys = self.ys - (cos_t * self.vy + sin_t * self.vx) * dt
         # Walls: turtlesim warns with the unclamped internal x and y_s, then clamps.
-        hit = (x < 0.0) | (x > WORLD_SIZE) | (ys < 0.0) | (ys > WORLD_SIZE)
+        hit = (x < 0.0) | (x > WORLD_SIZE_M) | (ys < 0.0) | (ys > WORLD_SIZE_M)
         wall_hits = []
         if hit.any():
             for i in np.flatnonzero(hit):
                 wall_hits.append(WallHit(self.names[i], float(x[i]), float(ys[i])))
-            x = np.minimum(np.maximum(x, 0.0), WORLD_SIZE)
-            ys = np.minimum(np.maximum(ys, 0.0), WORLD_SIZE)
+            x = np.minimum(np.maximum(x, 0.0), WORLD_SIZE_M)
+            ys = np.minimum(np.maximum(ys, 0.0), WORLD_SIZE_M)
         self.theta = theta
         self.x = x
         self.ys = ys

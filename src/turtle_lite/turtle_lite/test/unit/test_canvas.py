@@ -2,8 +2,9 @@
 
 import numpy as np
 import pytest
+from course_common.arena import METER_PX, SPAWN_M
 from turtle_lite.canvas import Canvas, qt_round
-from turtle_lite.world import CENTER, DEFAULT_PEN_RGB, METER_PX, World
+from turtle_lite.world import DEFAULT_PEN_RGB, World
 
 BG = (69, 86, 255)
 PEN = (179, 184, 255)
@@ -88,7 +89,7 @@ def test_colour_sensor_while_moving_matches_turtlesim_table(speed, low, high):
     """TURTLESIM.md 1.7: 25 samples heading +x with pen width 3 read the pen colour 19, 10,
     1 and 0 times at 1, 1.5, 2 and >= 2.5 m/s."""
     world = World()
-    world.add_turtle('turtle1', 1.0, CENTER, 0.0)
+    world.add_turtle('turtle1', 1.0, SPAWN_M, 0.0)
     world.set_command('turtle1', speed, 0.0, 0.0, now=0.0)
     world.step(0.0)
     world.step(0.0)

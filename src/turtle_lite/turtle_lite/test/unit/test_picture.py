@@ -1,17 +1,17 @@
 """Unit tests of turtle_lite.picture: rendering turtles and writing PNGs."""
 
 import numpy as np
+from course_common.arena import SPAWN_M
 from PIL import Image
 from turtle_lite.canvas import Canvas
 from turtle_lite.picture import SHELL_RGB, render, save_png
-from turtle_lite.world import CENTER
 
 BG = (69, 86, 255)
 
 
 def test_render_draws_sprite_at_pose_without_touching_canvas():
     canvas = Canvas(BG)
-    image = render(canvas.pixels, [(CENTER, CENTER, 0.0)])
+    image = render(canvas.pixels, [(SPAWN_M, SPAWN_M, 0.0)])
     assert image.size == (500, 500)
     assert image.getpixel((250, 250)) == SHELL_RGB
     assert image.getpixel((5, 5)) == BG
@@ -20,8 +20,8 @@ def test_render_draws_sprite_at_pose_without_touching_canvas():
 
 def test_sprite_is_rotated_by_theta():
     canvas = Canvas(BG)
-    east = np.asarray(render(canvas.pixels, [(CENTER, CENTER, 0.0)]))
-    north = np.asarray(render(canvas.pixels, [(CENTER, CENTER, np.pi / 2)]))
+    east = np.asarray(render(canvas.pixels, [(SPAWN_M, SPAWN_M, 0.0)]))
+    north = np.asarray(render(canvas.pixels, [(SPAWN_M, SPAWN_M, np.pi / 2)]))
     # The head is ahead of the shell: right of centre facing east, above it facing north.
     assert tuple(east[249, 265]) != BG and tuple(east[234, 249]) == BG
     assert tuple(north[234, 249]) != BG and tuple(north[249, 265]) == BG

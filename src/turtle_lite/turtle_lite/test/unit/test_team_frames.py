@@ -1,62 +1,11 @@
-"""Unit tests of turtle_lite.team_frames: pose topic discovery, frame names, pose -> transform."""
+"""Unit tests of turtle_lite.team_frames: changes in the pose topics, pose -> transform."""
 
 import math
 
 import pytest
-from turtle_lite.team_frames import (
-    POSE_TYPE,
-    Transform,
-    diff_topics,
-    frame_for_pose_topic,
-    pose_to_transform,
-    pose_topics,
-)
+from turtle_lite.team_frames import Transform, diff_topics, pose_to_transform
 
 TOL = 1e-12  # pure float maths: exact up to rounding
-
-
-@pytest.mark.parametrize('topic, namespace, frame', [
-    ('/turtle1/pose', '/', 'turtle1'),
-    ('/robot1/pose', '/', 'robot1'),
-    ('/robot_0/pose', '/', 'robot_0'),
-    ('/turtlesim1/turtle1/pose', '/', 'turtlesim1/turtle1'),
-    ('/turtlesim1/turtle1/pose', '/turtlesim1', 'turtle1'),
-    ('/turtlesim1/turtle1/pose', 'turtlesim1/', 'turtle1'),
-    ('/turtlesim2/turtle1/pose', '/turtlesim1', None),   # another simulator
-    ('/pose', '/', None),                                # no turtle name
-    ('/robot1/cmd_vel', '/', None),                      # not a pose
-    ('/robot1/pose/extra', '/', None),
-    ('/robot1//pose', '/', None),                        # empty name segment
-    ('/robot1/posey', '/', None),
-])
-def test_frame_for_pose_topic(topic, namespace, frame):
-    assert frame_for_pose_topic(topic, namespace) == frame
-
-
-PUBLISHED = [
-    ['/rosout', 'rosgraph_msgs/Log'],
-    ['/robot1/pose', POSE_TYPE],
-    ['/robot2/pose', POSE_TYPE],
-    ['/robot1/color_sensor', 'turtlesim/Color'],
-    ['/odd/pose', 'geometry_msgs/Pose'],   # a pose topic of another type is not a turtle's
-    ['/sim/turtle1/pose', POSE_TYPE],
-]
-
-
-@pytest.mark.parametrize('namespace, only, expected', [
-    ('/', (), {'/robot1/pose': 'robot1', '/robot2/pose': 'robot2',
-               '/sim/turtle1/pose': 'sim/turtle1'}),
-    ('/sim', (), {'/sim/turtle1/pose': 'turtle1'}),
-    ('/', ('robot2',), {'/robot2/pose': 'robot2'}),
-    ('/', ('nobody',), {}),
-    ('/nothing', (), {}),
-])
-def test_pose_topics(namespace, only, expected):
-    assert pose_topics(PUBLISHED, namespace, only) == expected
-
-
-def test_pose_topics_of_an_empty_graph():
-    assert pose_topics([], '/') == {}
 
 
 @pytest.mark.parametrize('old, new, added, removed', [

@@ -3,14 +3,14 @@
 import math
 
 import pytest
+from course_common.arena import WORLD_SIZE_M
 from turtle_lite.trails import ARENA_RGB, PALETTE, Trail, arena_outline, robot_color
-from turtle_lite.world import WORLD_SIZE
 
 
 def test_arena_outline_is_the_closed_world_square():
-    s = WORLD_SIZE
+    s = WORLD_SIZE_M
     assert arena_outline() == [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s), (0.0, 0.0)]
-    assert pytest.approx(11.088889, abs=1e-6) == WORLD_SIZE
+    assert pytest.approx(11.088889, abs=1e-6) == WORLD_SIZE_M
 
 
 @pytest.mark.parametrize('size', [0, -1.0, math.nan, math.inf, '11'])

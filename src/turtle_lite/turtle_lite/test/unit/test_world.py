@@ -4,15 +4,14 @@ import math
 
 import numpy as np
 import pytest
+from course_common.arena import SPAWN_M, WORLD_SIZE_M
 from turtle_lite.world import (
-    CENTER,
     CMD_TIMEOUT_S,
     DEFAULT_PEN_RGB,
     DT_S,
     PI_TRUNC,
-    WORLD_SIZE,
     World,
-    wrap_angle,
+    turtlesim_wrap_angle,
 )
 
 F32 = 1e-6  # float32 pose fields: compare to about 1e-6
@@ -24,7 +23,7 @@ def f32(value):
 
 def make_world(*turtles):
     world = World()
-    for name, x, y, theta in turtles or [('turtle1', CENTER, CENTER, 0.0)]:
+    for name, x, y, theta in turtles or [('turtle1', SPAWN_M, SPAWN_M, 0.0)]:
         world.add_turtle(name, x, y, theta)
     return world
 
@@ -35,16 +34,16 @@ def step_pose(world, now, name='turtle1'):
 
 
 def test_constants_match_turtlesim():
-    assert f32(WORLD_SIZE) == f32(11.08888912)
-    assert f32(5.5444446) == CENTER
+    assert f32(WORLD_SIZE_M) == f32(11.08888912)
+    assert f32(5.5444446) == SPAWN_M
     assert DT_S == 0.016
     assert PI_TRUNC == 3.14159265
 
 
 def test_worked_trajectory_heading_first():
     world = make_world()
-    x0 = CENTER
-    y0 = WORLD_SIZE - (WORLD_SIZE - CENTER)
+    x0 = SPAWN_M
+    y0 = WORLD_SIZE_M - (WORLD_SIZE_M - SPAWN_M)
     for k in range(1, 250):
         world.set_command('turtle1', 1.0, 0.0, 0.5, now=0.0)
         pose, _ = step_pose(world, now=0.5)
@@ -67,18 +66,18 @@ def test_worked_trajectory_heading_first():
     (-PI_TRUNC, -PI_TRUNC),
     (PI_TRUNC, -PI_TRUNC),
 ])
-def test_wrap_angle_truncated_pi(theta, expected):
-    assert f32(wrap_angle(theta)) == pytest.approx(expected, abs=2e-7)
+def test_turtlesim_wrap_angle_truncated_pi(theta, expected):
+    assert f32(turtlesim_wrap_angle(theta)) == pytest.approx(expected, abs=2e-7)
 
 
 @pytest.mark.parametrize('theta', [1e12, -1e12, 3e38, -3e38, 1e300])
-def test_wrap_angle_huge_values_stay_in_range(theta):
-    out = wrap_angle(theta)
+def test_turtlesim_wrap_angle_huge_values_stay_in_range(theta):
+    out = turtlesim_wrap_angle(theta)
     assert -PI_TRUNC <= out < PI_TRUNC
 
 
-def test_wrap_angle_arrays():
-    out = wrap_angle(np.array([3.5, 7.0, -7.0]))
+def test_turtlesim_wrap_angle_arrays():
+    out = turtlesim_wrap_angle(np.array([3.5, 7.0, -7.0]))
     assert out == pytest.approx([3.5 - 2 * PI_TRUNC, 7.0 - 2 * PI_TRUNC, -7.0 + 2 * PI_TRUNC])
 
 
@@ -93,7 +92,7 @@ def test_fresh_turtle_is_stationary():
     world = make_world()
     for _ in range(5):
         pose, _ = step_pose(world, now=100.0)
-    assert tuple(pose) == pytest.approx((CENTER, CENTER, 0.0, 0.0, 0.0), abs=F32)
+    assert tuple(pose) == pytest.approx((SPAWN_M, SPAWN_M, 0.0, 0.0, 0.0), abs=F32)
 
 
 def test_timeout_stops_after_one_second_and_zeroes_velocities():
@@ -131,8 +130,8 @@ def test_holonomic_y_moves_left():
     world = make_world()
     world.set_command('turtle1', 0.0, 1.0, 0.0, now=0.0)
     pose, _ = step_pose(world, 0.1)
-    assert pose[0] == pytest.approx(CENTER, abs=F32)
-    assert pose[1] == pytest.approx(CENTER + 0.016, abs=F32)
+    assert pose[0] == pytest.approx(SPAWN_M, abs=F32)
+    assert pose[1] == pytest.approx(SPAWN_M + 0.016, abs=F32)
     world.teleport_absolute('turtle1', 5.0, 5.0, math.pi / 2)  # facing +y, left is -x
     world.set_command('turtle1', 0.0, 1.0, 0.0, now=0.0)
     pose, _ = step_pose(world, 0.1)
@@ -147,7 +146,7 @@ def test_wall_hits_report_screen_y_and_clamp_without_zeroing_velocity():
     hit = result.wall_hits[0]
     assert hit.name == 'turtle1'
     assert hit.x == pytest.approx(f32(0.01) - 0.016)
-    assert hit.y_s == pytest.approx(WORLD_SIZE - f32(0.01))
+    assert hit.y_s == pytest.approx(WORLD_SIZE_M - f32(0.01))
     assert pose[0] == 0.0
     assert pose[3] == 1.0  # still the commanded speed
     _, result = step_pose(world, 0.2)
@@ -158,7 +157,7 @@ def test_sitting_exactly_on_wall_does_not_warn():
     world = make_world(('turtle1', 0.0, 0.0, 0.0))
     _, result = step_pose(world, 0.1)
     assert result.wall_hits == []
-    world.teleport_absolute('turtle1', 0.0, WORLD_SIZE, 0.0)  # float32(H) > H: a wall hit
+    world.teleport_absolute('turtle1', 0.0, WORLD_SIZE_M, 0.0)  # float32(H) > H: a wall hit
     _, result = step_pose(world, 0.1)
     assert len(result.wall_hits) == 0  # the top edge is clamped silently by the teleport
 
@@ -177,7 +176,7 @@ def test_teleport_absolute_above_top_clamps_silently_but_below_bottom_warns():
     world.teleport_absolute('turtle1', 3.0, 50.0, 0.0)
     pose, result = step_pose(world, 0.0)
     assert result.wall_hits == []
-    assert pose[1] == pytest.approx(WORLD_SIZE, abs=F32)
+    assert pose[1] == pytest.approx(WORLD_SIZE_M, abs=F32)
     world.teleport_absolute('turtle1', 3.0, -1.0, 0.0)
     pose, result = step_pose(world, 0.0)
     assert len(result.wall_hits) == 1
@@ -188,7 +187,7 @@ def test_teleports_are_queued_in_order_and_relative_rotates_first():
     world = make_world()
     world.teleport_absolute('turtle1', 2.0, 2.0, 0.0)
     world.teleport_relative('turtle1', 1.0, math.pi / 2)  # turn left, then 1 m "up"
-    assert world.pose('turtle1').x == pytest.approx(CENTER)  # nothing before the step
+    assert world.pose('turtle1').x == pytest.approx(SPAWN_M)  # nothing before the step
     pose, _ = step_pose(world, 0.0)
     assert pose[0] == pytest.approx(2.0, abs=F32)
     assert pose[1] == pytest.approx(3.0, abs=F32)
@@ -286,8 +285,8 @@ def test_absurd_but_finite_values_clamp_and_stay_finite():
     for _ in range(3):
         pose, result = step_pose(world, 0.1)
         assert np.isfinite(pose).all()
-        assert 0.0 <= pose[0] <= f32(WORLD_SIZE)
-        assert 0.0 <= pose[1] <= f32(WORLD_SIZE)
+        assert 0.0 <= pose[0] <= f32(WORLD_SIZE_M)
+        assert 0.0 <= pose[1] <= f32(WORLD_SIZE_M)
         assert -PI_TRUNC <= pose[2] <= PI_TRUNC
 
 
