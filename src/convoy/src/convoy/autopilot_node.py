@@ -3,7 +3,7 @@ import threading
 from dataclasses import dataclass
 
 import rospy
-from course_common.arena import CENTRE_M as WORLD_CENTRE_M
+from course_common.arena import CENTRE_M
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_number
 from course_common.planar import is_finite_pose
@@ -49,15 +49,15 @@ def _number_param(name, default):
 
 def load_config():
     """Reads and validates the private parameters. Raises ParamError or ValueError."""
-    path = Lemniscate(centre_x=_number_param('centre_x_m', WORLD_CENTRE_M),
-                      centre_y=_number_param('centre_y_m', WORLD_CENTRE_M),
+    path = Lemniscate(centre_x=_number_param('centre_x_m', CENTRE_M),
+                      centre_y=_number_param('centre_y_m', CENTRE_M),
                       half_width=_number_param('half_width_m', DEFAULT_HALF_WIDTH_M),
                       half_height=_number_param('half_height_m', DEFAULT_HALF_HEIGHT_M))
     if not path.fits_in_world(WALL_MARGIN_M):
         raise ValueError('parameters ~centre_x_m/~centre_y_m/~half_width_m/~half_height_m give '
                          'a path with bounds %r: expected it %.1f m inside the walls of the '
                          '%.2f m world' % (tuple(round(b, 2) for b in path.bounds()),
-                                           WALL_MARGIN_M, 2.0 * WORLD_CENTRE_M))
+                                           WALL_MARGIN_M, 2.0 * CENTRE_M))
     return AutopilotConfig(path=path,
                            speed_mps=_number_param('speed_mps', DEFAULT_SPEED_MPS),
                            lookahead_m=_number_param('lookahead_m', DEFAULT_LOOKAHEAD_M),
