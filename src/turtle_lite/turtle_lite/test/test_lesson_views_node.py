@@ -10,9 +10,10 @@ import unittest
 import rosgraph
 import rospy
 import rostest
+from course_common.testing import START_DEADLINE_S, wait_for
+from course_common.testing.turtlesim import POSE_TOL, WORLD
 from course_common.testing.views import TfPoseCheck, results_dir
 from PIL import Image
-from sim_support import POSE_TOL, START_DEADLINE_S, WORLD, wait_for
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute

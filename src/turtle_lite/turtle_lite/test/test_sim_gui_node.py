@@ -11,8 +11,9 @@ import unittest
 import numpy as np
 import rospy
 import rostest
+from course_common.testing import START_DEADLINE_S, wait_for
 from PIL import ImageGrab
-from sim_support import DEFAULT_BG, START_DEADLINE_S, wait_for
+from sim_support import DEFAULT_BG
 from turtlesim.srv import TeleportAbsolute
 
 SCREEN = '800x600x24'
