@@ -9,17 +9,19 @@ Production code imports course_common.waiting, .processes, .ports and .xvfb, nev
 """
 import importlib.metadata
 import os
+import shutil
 import sys
 import tempfile
+import unittest
 
 from course_common.ports import free_port
 from course_common.processes import ChildProcess, cpu_ticks, rss_mb, spawn
 from course_common.waiting import POLL_S, WaitError, wait_for
 from course_common.xvfb import Xvfb
 
-__all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess', 'WaitError',
-           'Xvfb', 'cpu_ticks', 'free_port', 'pin', 'results_dir', 'rospy_version', 'rss_mb',
-           'spawn', 'wait_for']
+__all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess',
+           'ScratchDirTestCase', 'WaitError', 'Xvfb', 'cpu_ticks', 'free_port', 'pin',
+           'results_dir', 'rospy_version', 'rss_mb', 'spawn', 'wait_for']
 
 # Deadlines are generous: the tests run on a loaded 2-core machine, and a deadline only costs
 # time when something is wrong.
@@ -40,6 +42,28 @@ def results_dir(argv=None):
         path = os.environ.get('ROS_TEST_RESULTS_DIR') or tempfile.gettempdir()
     os.makedirs(path, exist_ok=True)
     return path
+
+
+class ScratchDirTestCase(unittest.TestCase):
+    """A TestCase with a scratch folder for the whole class (path(name) in it), removed after.
+
+    TMP_PREFIX names the folder, so a folder left by a killed run says whose it was.
+    """
+
+    TMP_PREFIX = 'course_test_'
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.tmp = tempfile.mkdtemp(prefix=cls.TMP_PREFIX)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+        super().tearDownClass()
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
 
 
 def rospy_version():

@@ -10,13 +10,13 @@ and the lesson's pose_to_tf and lesson_markers.
 
 import argparse
 import os
-import subprocess
 import sys
-import tempfile
 
 import numpy as np
 import rosgraph
-from course_common.testing import wait_for
+from course_common.processes import ChildProcess
+from course_common.waiting import wait_for
+from course_common.xvfb import Xvfb
 from PIL import Image, ImageGrab
 
 from turtle_lite.rviz_config import display_topics
@@ -38,16 +38,16 @@ class RvizOnXvfb:
             self.topics = display_topics(f.read())
         self.config_path = config_path
         self.node_name = '/' + node_name.lstrip('/')
-        self._log = tempfile.TemporaryFile()  # noqa: SIM115 - closed in close()
-        # -displayfd: Xvfb picks a free display number and writes it to us.
-        self._xvfb = subprocess.Popen(
-            ['Xvfb', '-displayfd', '1', '-screen', '0', '%dx%dx24' % SCREEN, '-nolisten', 'tcp'],
-            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-        self.display = ':' + self._xvfb.stdout.readline().decode().strip()
-        env = dict(os.environ, DISPLAY=self.display, LIBGL_ALWAYS_SOFTWARE='1')
-        self._rviz = subprocess.Popen(
-            ['rviz', '-d', config_path, '__name:=' + node_name.lstrip('/')],
-            env=env, stdout=self._log, stderr=subprocess.STDOUT)
+        self._xvfb = Xvfb(SCREEN)
+        self.display = self._xvfb.display
+        self._rviz = ChildProcess(['rviz', '-d', config_path, '__name:=' + node_name.lstrip('/')],
+                                  env={'DISPLAY': self.display, 'LIBGL_ALWAYS_SOFTWARE': '1'},
+                                  stop_timeout_s=10.0)
+        try:
+            self._rviz.start()
+        except OSError:
+            self._xvfb.close()
+            raise
 
     def __enter__(self):
         return self
@@ -56,22 +56,14 @@ class RvizOnXvfb:
         self.close()
 
     def close(self):
-        for proc in (self._rviz, self._xvfb):
-            if proc.poll() is None:
-                proc.terminate()
-                try:
-                    proc.wait(10)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-                    proc.wait()
-        self._log.close()
+        self._rviz.stop()
+        self._xvfb.close()
 
     def log(self):
-        self._log.seek(0)
-        return self._log.read().decode(errors='replace')
+        return self._rviz.output()
 
     def running(self):
-        return self._rviz.poll() is None
+        return self._rviz.alive()
 
     def subscriptions(self):
         """The topics rviz's node subscribes to, as the master reports them."""
