@@ -9,6 +9,7 @@ Production code imports course_common.waiting, .processes, .ports and .xvfb, nev
 """
 import importlib.metadata
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -21,13 +22,16 @@ from course_common.xvfb import Xvfb
 
 __all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess',
            'ScratchDirTestCase', 'WaitError', 'Xvfb', 'cpu_ticks', 'free_port', 'pin',
-           'results_dir', 'rospy_version', 'rss_mb', 'spawn', 'wait_for']
+           'consecutive', 'info_texts', 'numbers_in', 'results_dir', 'rospy_version', 'rss_mb',
+           'spawn', 'wait_for']
 
 # Deadlines are generous: the tests run on a loaded 2-core machine, and a deadline only costs
 # time when something is wrong.
 START_DEADLINE_S = 30.0  # a node or tool process coming up (rosrun + Python start-up)
 EVENT_DEADLINE_S = 15.0  # something that should follow promptly (a message, a log line, an exit)
 GTEST_OUTPUT = '--gtest_output=xml:'
+#: rospy's INFO line on a terminal: "[INFO] [<wall time>]: <text>".
+INFO_LINE = re.compile(r'^\[INFO\] \[[\d.]+\]: (.*)$')
 
 
 def results_dir(argv=None):
@@ -42,6 +46,30 @@ def results_dir(argv=None):
         path = os.environ.get('ROS_TEST_RESULTS_DIR') or tempfile.gettempdir()
     os.makedirs(path, exist_ok=True)
     return path
+
+
+def info_texts(lines):
+    """The texts of rospy's INFO lines among a process's screen lines, in order."""
+    return [m.group(1) for m in map(INFO_LINE.match, lines) if m]
+
+
+def numbers_in(texts, pattern, kind=int):
+    """The numbers (group 1 of pattern, as kind) in texts, which must all match pattern.
+
+    Raises AssertionError naming the first text that does not (a test's failure).
+    """
+    found = []
+    for text in texts:
+        match = pattern.match(text)
+        if not match:
+            raise AssertionError('unexpected text %r (expected %s)' % (text, pattern.pattern))
+        found.append(kind(match.group(1)))
+    return found
+
+
+def consecutive(values):
+    """True for a non-empty run of consecutive integers (n, n+1, n+2, ...)."""
+    return bool(values) and list(values) == list(range(values[0], values[0] + len(values)))
 
 
 class ScratchDirTestCase(unittest.TestCase):

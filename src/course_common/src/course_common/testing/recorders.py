@@ -45,6 +45,10 @@ class Recorder:
         with self._lock:
             return [m for who, m in self._items if publisher is None or who == publisher]
 
+    def data(self, publisher=None):
+        """The data fields of the messages so far (std_msgs' one-field messages)."""
+        return [m.data for m in self.messages(publisher)]
+
     def publishers(self):
         """The names of the nodes heard so far, in the order they were first heard."""
         with self._lock:
