@@ -8,7 +8,8 @@ import unittest
 import rospkg
 import rospy
 import rostest
-from course_common.testing.views import TfPoseCheck, results_dir
+from course_common.testing import results_dir
+from course_common.testing.views import TfPoseCheck
 from PIL import Image
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb

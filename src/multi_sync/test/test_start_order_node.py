@@ -51,24 +51,24 @@ class TestStartOrder(unittest.TestCase):
         wait_for(watch.go_count, START_S, 'GO after the four robots are ready')
         wait_for(lambda: watch.moved(range(4)), EVENT_S, 'robots 0..3 to move')
         for i, robot in robots.items():
-            self.assertTrue(robot.printed('Robot %d published ready status' % i), robot.output)
+            self.assertTrue(robot.printed('Robot %d published ready status' % i), robot.lines())
         self.assertEqual(watch.go_count(), 1)
         self.assertNotIn(4, watch.first_move_wall)
 
         # 2. Monitor restarted after GO: it collects the (moving) robots again and says GO.
-        self.assertEqual(monitor.stop(), 0, monitor.output)
+        self.assertEqual(monitor.stop(), 0, monitor.lines())
         monitor = self.start('monitor', '4')
         wait_for(lambda: monitor.printed('All robots GO!'), EVENT_S,
                  'the restarted monitor to count the team again')
         for i in range(4):
-            self.assertTrue(monitor.printed('Robot %d is ready!' % i), monitor.output)
+            self.assertTrue(monitor.printed('Robot %d is ready!' % i), monitor.lines())
 
         # 3. A robot started after GO does not wait for a team that is already gone.
         self.start('move_robot', '4')
         wait_for(lambda: watch.moved([4]), EVENT_S, 'robot 4, started after GO, to move')
 
         # 4. A robot stopped with Ctrl-C sends a stop; restarted, it moves again.
-        self.assertEqual(robots[2].stop(), 0, robots[2].output)
+        self.assertEqual(robots[2].stop(), 0, robots[2].lines())
         wait_for(lambda: watch.last_cmd.get(2) == 0.0, EVENT_S, 'the stop command of robot 2')
         with watch.lock:
             del watch.first_move_wall[2]
@@ -76,7 +76,7 @@ class TestStartOrder(unittest.TestCase):
         wait_for(lambda: watch.moved([2]), EVENT_S, 'robot 2, restarted after GO, to move')
 
         # The monitor survived all of it.
-        self.assertIsNone(monitor.proc.poll(), monitor.output)
+        self.assertIsNone(monitor.returncode, monitor.lines())
         watch.close()
 
     def test_monitor_ignores_bad_statuses(self):
@@ -94,9 +94,9 @@ class TestStartOrder(unittest.TestCase):
         wait_for(lambda: monitor.printed('Robot 1 is ready!'), EVENT_S, 'robot 1 counted')
         wait_for(lambda: monitor.printed('Ignoring status with robot_id 25'), EVENT_S,
                  'a warning about id 25')
-        self.assertEqual(sum('is ready!' in line for line in monitor.output), 1,
-                         monitor.output)
-        self.assertFalse(monitor.printed('All robots GO!'), monitor.output)
+        self.assertEqual(sum('is ready!' in line for line in monitor.lines()), 1,
+                         monitor.lines())
+        self.assertFalse(monitor.printed('All robots GO!'), monitor.lines())
 
         pub.publish(status(0))
         wait_for(watch.go_count, EVENT_S, 'GO once robots 0 and 1 are ready')
@@ -104,8 +104,8 @@ class TestStartOrder(unittest.TestCase):
         # A ready after GO (a robot that missed it) is answered with GO again.
         pub.publish(status(1))
         wait_for(lambda: watch.go_count() >= 2, EVENT_S, 'GO sent again after a late ready')
-        self.assertIsNone(monitor.proc.poll(), monitor.output)
-        self.assertEqual(monitor.stop(), 0, monitor.output)
+        self.assertIsNone(monitor.returncode, monitor.lines())
+        self.assertEqual(monitor.stop(), 0, monitor.lines())
         pub.unregister()
         watch.close()
 

@@ -32,6 +32,7 @@ class TestGraphChat(ScratchDirTestCase):
     def test_2_rosout_hidden_unless_all(self):
         # rostest starts no rosout node; roscore does: start one, as roscore would.
         rosout = spawn(['rosrun', 'rosout', 'rosout'])
+        self.addCleanup(rosout.stop)
         try:
             graph = wait_graph(self.path('all.dot'), lambda g: '/rosout' in g.nodes,
                                'the /rosout node with --all', '--all')
@@ -44,7 +45,6 @@ class TestGraphChat(ScratchDirTestCase):
         finally:
             rosout.interrupt()
             rosout.wait_exit(EXIT_DEADLINE_S)
-            rosout.stop()
 
     def test_3_png_and_svg(self):
         wait_graph(self.path('wait.dot'), is_chat, 'the chat graph')
@@ -66,6 +66,7 @@ class TestGraphChat(ScratchDirTestCase):
 
     def test_4_nodes_come_and_go(self):
         talker2 = spawn(['rosrun', 'chat_pkg', 'talker', '__name:=talker2'])
+        self.addCleanup(talker2.stop)
         try:
             wait_graph(self.path('two.dot'),
                        lambda g: g.nodes == CHAT_NODES | {'/talker2'}
@@ -74,7 +75,6 @@ class TestGraphChat(ScratchDirTestCase):
         finally:
             talker2.interrupt()
             talker2.wait_exit(EXIT_DEADLINE_S)
-            talker2.stop()
         wait_graph(self.path('one.dot'), is_chat, 'talker2 gone from the graph')
 
     def test_5_no_display_writes_png_in_cwd(self):

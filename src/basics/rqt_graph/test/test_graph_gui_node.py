@@ -49,6 +49,7 @@ class TestGraphGui(unittest.TestCase):
             os.path.join(results_dir(), 'rqt_graph_window.png'))
 
         talker2 = spawn(['rosrun', 'chat_pkg', 'talker', '__name:=talker2'])
+        self.addCleanup(talker2.stop)
         try:
             self.wait_line('rqt_graph: showing 3 nodes, 1 topic')
             wait_for(lambda: (self.screen() != before).any(axis=2).sum() > DARK_MIN_PX,
@@ -56,7 +57,6 @@ class TestGraphGui(unittest.TestCase):
         finally:
             talker2.interrupt()
             talker2.wait_exit(EXIT_DEADLINE_S)
-            talker2.stop()
         self.wait_line('rqt_graph: showing 2 nodes, 1 topic', times=2)
 
         self.tool.interrupt()  # Ctrl-C in the terminal closes the window
