@@ -4,6 +4,7 @@ import time
 
 import rospy
 from course_common.processes import ChildProcess
+from course_common.processes import run_to_exit as run_command
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 from turtlesim.msg import Pose
@@ -117,5 +118,4 @@ class NodeProcess(ChildProcess):
 
 def run_to_exit(args, timeout_s=60.0, env=None):
     """Run rosrun multi_sync ARGS to completion; return (exit code, stdout + stderr)."""
-    with NodeProcess(*args, env=env) as proc:
-        return proc.wait_exit(timeout_s), proc.output()
+    return run_command(['rosrun', 'multi_sync', *args], timeout_s, env=env)

@@ -17,7 +17,9 @@ from course_common.waiting import WaitError, wait_for
 
 STOP_TIMEOUT_S = 15.0  # Ctrl-C to exit: rospy and roslaunch need a few seconds under load
 EXIT_TIMEOUT_S = 15.0  # wait_exit's default: a process that should end promptly
-READ_POLL_S = 0.1  # the reader's select() timeout: how soon it notices the process has ended
+# How soon the reader of a terminal notices that the process has ended (a terminal, which
+# this process also holds open, never reports an end; a pipe does, so its reader just blocks).
+TERMINAL_POLL_S = 0.1
 TAIL_LINES = 15  # lines of output quoted when a wait fails
 #: /proc/<pid>/stat fields after the command name ("pid (comm) state ppid ..."): utime and
 #: stime are fields 14 and 15 of the whole line, 12 and 13 after the name (0-based 11, 12).
@@ -76,12 +78,13 @@ class ChildProcess:
     its bag, a node sends its last command), and SIGKILLs the session if the process has not
     exited after stop_timeout_s.
     env: variables added to this process's environment (a value None removes one).
+    on_line: called by the reader with each complete output line, as it comes.
     """
 
     stop_timeout_s = STOP_TIMEOUT_S
 
     def __init__(self, argv=None, env=None, log_path=None, terminal=False, cwd=None,
-                 stop_timeout_s=None):
+                 stop_timeout_s=None, on_line=None):
         self.argv = None if argv is None else list(argv)
         self.env = dict(env or {})
         self.log_path = log_path
@@ -89,9 +92,11 @@ class ChildProcess:
         self.cwd = cwd
         if stop_timeout_s is not None:
             self.stop_timeout_s = stop_timeout_s
+        self.on_line = on_line
         self.proc = None
         self._lock = threading.Lock()
         self._text = ''
+        self._partial = ''  # the unfinished last line, for on_line
         self._finished = threading.Event()
         self._reader = None
         self._fd = None  # what the reader reads: the pipe, or the terminal's master side
@@ -142,9 +147,10 @@ class ChildProcess:
     def _read(self):
         decoder = codecs.getincrementaldecoder('utf-8')(errors='replace')
         fd = self._fd
+        poll_s = TERMINAL_POLL_S if self.terminal else None
         while True:
             try:
-                ready, _, _ = select.select([fd], [], [], READ_POLL_S)
+                ready, _, _ = select.select([fd], [], [], poll_s)
                 data = os.read(fd, 65536) if ready else None
             except (OSError, ValueError):  # a terminal's other side closed (EIO), or hang_up()
                 break
@@ -155,6 +161,8 @@ class ChildProcess:
             elif self.proc.poll() is not None:  # a terminal never ends: the process did
                 break
         self._append(decoder.decode(b'', final=True))
+        if self.on_line is not None and self._partial:
+            self.on_line(self._partial)
         if self._log is not None:
             self._log.close()
         self._finished.set()
@@ -167,6 +175,11 @@ class ChildProcess:
         if self._log is not None:
             self._log.write(text)
             self._log.flush()
+        if self.on_line is not None:
+            lines = split_lines(self._partial + text)
+            self._partial = (self._partial + text).rpartition('\n')[2]
+            for line in lines:
+                self.on_line(line)
 
     # --- what it printed ---------------------------------------------------------------
     def output(self):
@@ -222,10 +235,9 @@ class ChildProcess:
         self._finished.wait(timeout_s)
         return code
 
-    def stop(self):
-        """SIGINT, then SIGKILL after stop_timeout_s, to its session; idempotent.
-
-        Returns the exit code: None if it never started or had to be killed."""
+    def stop(self, timeout_s=None):
+        """SIGINT, then SIGKILL after timeout_s (default stop_timeout_s), to its session;
+        idempotent. Returns the exit code: None if it never started or had to be killed."""
         if self._stopped or self.proc is None:
             return self._code
         self._stopped = True
@@ -233,7 +245,7 @@ class ChildProcess:
         if code is None:
             self._signal_session(signal.SIGINT)
             try:
-                code = self.proc.wait(self.stop_timeout_s)
+                code = self.proc.wait(self.stop_timeout_s if timeout_s is None else timeout_s)
             except subprocess.TimeoutExpired:
                 code = None
         self._signal_session(signal.SIGKILL)  # also whatever it left behind
@@ -284,3 +296,10 @@ class ChildProcess:
 def spawn(argv, **kwargs):
     """A started ChildProcess of argv (keyword arguments as ChildProcess's)."""
     return ChildProcess(argv, **kwargs).start()
+
+
+def run_to_exit(argv, timeout_s, **kwargs):
+    """Runs argv to its end: (exit code, output); WaitError if it runs past timeout_s (then
+    it is stopped). Keyword arguments as ChildProcess's."""
+    with ChildProcess(argv, **kwargs) as proc:
+        return proc.wait_exit(timeout_s), proc.output()
