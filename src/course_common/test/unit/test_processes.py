@@ -14,6 +14,7 @@ from course_common.processes import (
     ChildProcess,
     cpu_ticks,
     rss_mb,
+    run_to_exit,
     spawn,
     split_lines,
     stat_cpu_ticks,
@@ -195,3 +196,32 @@ def test_start_twice_is_an_error():
 
 def test_stop_before_start_returns_none():
     assert ChildProcess(['true']).stop() is None
+
+
+def test_on_line_gets_each_complete_line_once():
+    got = []
+    proc = spawn(['sh', '-c', 'printf "a\\nb"; sleep 0.2; printf "c\\r\\nd"'], on_line=got.append)
+    proc.wait_exit(DEADLINE_S)
+    proc.stop()
+    assert got == ['a', 'bc', 'd']  # 'b' waited for the rest of its line; 'd' at the end
+
+
+def test_stop_with_a_shorter_timeout_kills_sooner():
+    proc = spawn([sys.executable, '-c', IGNORES_SIGINT])
+    proc.wait_line('ready', DEADLINE_S)
+    started = time.monotonic()
+    assert proc.stop(0.2) is None
+    assert time.monotonic() - started < proc.stop_timeout_s
+
+
+@pytest.mark.parametrize('script, code, output', [
+    ('echo out; echo err >&2; exit 4', 4, 'out\nerr\n'),
+    ('true', 0, ''),
+])
+def test_run_to_exit(script, code, output):
+    assert run_to_exit(['sh', '-c', script], DEADLINE_S) == (code, output)
+
+
+def test_run_to_exit_stops_a_process_past_its_time():
+    with pytest.raises(WaitError, match='still running'):
+        run_to_exit(['sleep', '30'], 0.2)
