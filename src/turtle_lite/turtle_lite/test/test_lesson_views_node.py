@@ -13,7 +13,6 @@ from course_common.testing import START_DEADLINE_S, results_dir, spawn, wait_for
 from course_common.testing.master import subscribers_of
 from course_common.testing.turtlesim import POSE_TOL, WORLD
 from course_common.testing.views import TfPoseCheck
-from PIL import Image
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
@@ -125,9 +124,8 @@ class LessonViewsTest(unittest.TestCase):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'rviz',
                             'turtlesim.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
-            rviz.wait_subscribed(START_DEADLINE_S * 2)
-            shot = rviz.wait_lesson_drawn(robots=2, labels=2, timeout_s=START_DEADLINE_S * 2)
-            Image.fromarray(shot).save(os.path.join(results_dir(), 'turtlesim_rviz.png'))
+            rviz.capture(os.path.join(results_dir(), 'turtlesim_rviz.png'), robots=2, labels=2,
+                         timeout_s=START_DEADLINE_S * 2)
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics, ['/lesson_markers', '/tf', '/tf_static'])
             self.assertEqual(error_lines(rviz.log()), [], rviz.log())

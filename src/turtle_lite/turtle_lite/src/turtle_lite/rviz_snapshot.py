@@ -97,13 +97,19 @@ class RvizOnXvfb:
         return wait_for(lambda: self._alive_and(drawn), timeout_s,
                         'rviz drawing the arena, %d robot(s) and %d label(s)' % (robots, labels))[0]
 
+    def capture(self, out_path, robots, labels, timeout_s=START_DEADLINE_S):
+        """Waits until rviz is subscribed and shows the lesson (each wait up to timeout_s),
+        saves the screen to out_path (PNG) and returns it as an array."""
+        self.wait_subscribed(timeout_s)
+        shot = self.wait_lesson_drawn(robots, labels, timeout_s)
+        Image.fromarray(shot).save(out_path)
+        return shot
+
 
 def snapshot(config_path, out_path, robots, labels, timeout_s=START_DEADLINE_S):
     """Saves a PNG of rviz showing config_path on the running lesson; returns the rviz log."""
     with RvizOnXvfb(config_path) as rviz:
-        rviz.wait_subscribed(timeout_s)
-        shot = rviz.wait_lesson_drawn(robots, labels, timeout_s)
-        Image.fromarray(shot).save(out_path)
+        rviz.capture(out_path, robots, labels, timeout_s)
         return rviz.log()
 
 
