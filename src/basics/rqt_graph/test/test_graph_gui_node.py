@@ -5,8 +5,8 @@ import unittest
 
 import numpy as np
 import rostest
-from course_common.testing import Xvfb, spawn, wait_for
-from graph_support import GRAPH_DEADLINE_S, results_dir
+from course_common.testing import Xvfb, results_dir, spawn, wait_for
+from graph_support import GRAPH_DEADLINE_S
 from PIL import ImageGrab
 
 PKG = 'rqt_graph'
