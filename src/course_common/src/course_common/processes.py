@@ -95,8 +95,9 @@ class ChildProcess:
         self.on_line = on_line
         self.proc = None
         self._lock = threading.Lock()
-        self._text = ''
-        self._partial = ''  # the unfinished last line, for on_line
+        self._chunks = []  # the output as read; output() joins them
+        self._lines = []  # its complete lines
+        self._partial = ''  # the unfinished last line
         self._finished = threading.Event()
         self._reader = None
         self._fd = None  # what the reader reads: the pipe, or the terminal's master side
@@ -123,8 +124,16 @@ class ChildProcess:
         else:
             streams = {'stdin': subprocess.DEVNULL, 'stdout': subprocess.PIPE,
                        'stderr': subprocess.STDOUT}
-        self.proc = subprocess.Popen(self.argv, env=env, cwd=self.cwd, start_new_session=True,
-                                     **streams)
+        try:
+            self.proc = subprocess.Popen(self.argv, env=env, cwd=self.cwd,
+                                         start_new_session=True, **streams)
+        except OSError:  # no such program: leave nothing open behind
+            for fd in (self._fd, self._slave):
+                if fd is not None:
+                    os.close(fd)
+            if self._log is not None:
+                self._log.close()
+            raise
         if not self.terminal:
             self._fd = self.proc.stdout.fileno()
         self._reader = threading.Thread(target=self._read, daemon=True,
@@ -162,7 +171,7 @@ class ChildProcess:
                 break
         self._append(decoder.decode(b'', final=True))
         if self.on_line is not None and self._partial:
-            self.on_line(self._partial)
+            self.on_line(self._partial.removesuffix('\r'))
         if self._log is not None:
             self._log.close()
         self._finished.set()
@@ -170,14 +179,15 @@ class ChildProcess:
     def _append(self, text):
         if not text:
             return
+        lines = split_lines(self._partial + text)
         with self._lock:
-            self._text += text
+            self._chunks.append(text)
+            self._lines.extend(lines)
+            self._partial = (self._partial + text).rpartition('\n')[2]
         if self._log is not None:
             self._log.write(text)
             self._log.flush()
         if self.on_line is not None:
-            lines = split_lines(self._partial + text)
-            self._partial = (self._partial + text).rpartition('\n')[2]
             for line in lines:
                 self.on_line(line)
 
@@ -185,11 +195,15 @@ class ChildProcess:
     def output(self):
         """Everything it printed so far, as one text."""
         with self._lock:
-            return self._text
+            if len(self._chunks) > 1:
+                self._chunks[:] = [''.join(self._chunks)]
+            return self._chunks[0] if self._chunks else ''
 
     def lines(self):
         """Its complete output lines so far (the last one too once it has ended)."""
-        return split_lines(self.output(), final=self._finished.is_set())
+        finished = self._finished.is_set()
+        with self._lock:
+            return self._lines + split_lines(self._partial, final=finished)
 
     def lines_with(self, text):
         return [line for line in self.lines() if text in line]
@@ -200,7 +214,8 @@ class ChildProcess:
 
     def tail(self, lines=TAIL_LINES):
         """Its last output lines, as one text (for error messages)."""
-        return '\n'.join(split_lines(self.output(), final=True)[-lines:])
+        with self._lock:
+            return '\n'.join((self._lines + split_lines(self._partial, final=True))[-lines:])
 
     def wait_line(self, text, timeout_s=EXIT_TIMEOUT_S):
         """Waits for an output line containing text and returns the first one; fails at once

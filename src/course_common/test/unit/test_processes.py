@@ -225,3 +225,19 @@ def test_run_to_exit(script, code, output):
 def test_run_to_exit_stops_a_process_past_its_time():
     with pytest.raises(WaitError, match='still running'):
         run_to_exit(['sleep', '30'], 0.2)
+
+
+@pytest.mark.parametrize('terminal', [False, True])
+def test_no_such_program_raises_and_leaves_no_fd_open(tmp_path, terminal):
+    before = len(os.listdir('/proc/self/fd'))
+    with pytest.raises(FileNotFoundError):
+        spawn([str(tmp_path / 'missing')], terminal=terminal, log_path=str(tmp_path / 'log'))
+    assert len(os.listdir('/proc/self/fd')) == before
+
+
+def test_many_small_writes_keep_every_line_in_order():
+    proc = spawn([sys.executable, '-c', 'for i in range(5000): print(i)'])
+    assert proc.wait_exit(DEADLINE_S) == 0
+    assert proc.lines() == [str(i) for i in range(5000)]
+    assert proc.tail(2) == '4998\n4999'
+    proc.stop()
