@@ -42,6 +42,7 @@ class LatencyProbe:
 
     def __init__(self):
         import rospy
+        from course_common.processes import spawn
         from geometry_msgs.msg import Twist
         from turtlesim.msg import Pose
 
@@ -53,11 +54,10 @@ class LatencyProbe:
         self._leader = rospy.Publisher('/probe/leader_pose', Pose, queue_size=10)
         self._follower = rospy.Publisher('/probe/follower_pose', Pose, queue_size=10)
         self._sub = rospy.Subscriber('/probe/cmd_vel', Twist, self._on_cmd, queue_size=100)
-        self._proc = subprocess.Popen(
+        self._proc = spawn(
             ['rosrun', 'convoy', 'convoy_node', '__name:=convoy_probe',
              '_leader_pose:=/probe/leader_pose', '_follower_pose:=/probe/follower_pose',
-             '_follower_speeds:=/probe/cmd_vel'], stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL)
+             '_follower_speeds:=/probe/cmd_vel'], stop_timeout_s=20.0)
         self._stop = threading.Event()
         self._thread = None
 
@@ -97,22 +97,13 @@ class LatencyProbe:
         self._stop.set()
         if self._thread is not None:
             self._thread.join()
-        self._proc.terminate()
-        self._proc.wait(20)
+        self._proc.stop()
 
 
 def _proc_cpu_s(pid):
-    with open('/proc/%d/stat' % pid) as stat:
-        fields = stat.read().rsplit(')', 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')  # utime + stime
-
-
-def _proc_rss_mb(pid):
-    with open('/proc/%d/status' % pid) as status:
-        for line in status:
-            if line.startswith('VmRSS:'):
-                return int(line.split()[1]) / 1024.0
-    return float('nan')
+    """CPU seconds the process has used so far."""
+    from course_common.processes import cpu_ticks
+    return cpu_ticks(pid) / os.sysconf('SC_CLK_TCK')
 
 
 def bag_timing(bag_path, n_robots):
@@ -146,6 +137,7 @@ def child(n_robots, duration_s):
     from convoy.harness import POLL_S, PrivateMasterLaunch, convoy_node_names, launch_for
     from convoy.metrics import delays_since_newest, percentile
     from convoy.recording import BagRecorder, convoy_topics
+    from course_common.processes import rss_mb
     from course_common.testing import wait_for
 
     out_dir = tempfile.mkdtemp(prefix='convoy_bench_')
@@ -177,7 +169,7 @@ def child(n_robots, duration_s):
                  alive=launch.alive)
         wall = time.monotonic() - cpu_t0
         cpu = {name: 100.0 * (_proc_cpu_s(pid) - cpu0[name]) / wall for name, pid in pids.items()}
-        rss = {name: _proc_rss_mb(pid) for name, pid in pids.items()}
+        rss = {name: rss_mb(pid) for name, pid in pids.items()}
         recorder.stop()
         probe.stop()
     finally:

@@ -17,7 +17,6 @@ The simulator is pioneer_mover's pioneer.launch (interface:=false) on its own ma
 """
 import math
 import os
-import subprocess
 import sys
 import tempfile
 import threading
@@ -28,7 +27,7 @@ import rospy
 from convoy.harness import POLL_S, PrivateMasterLaunch
 from course_common.angles import wrap_angle
 from course_common.arena import SPAWN_M, WORLD_SIZE_M
-from course_common.testing import WaitError, wait_for
+from course_common.testing import WaitError, spawn, wait_for
 from geometry_msgs.msg import Pose2D, Twist
 from turtlesim.msg import Pose as TurtlePose
 from turtlesim.srv import TeleportAbsolute
@@ -187,32 +186,30 @@ def run_ours(cmd_pub, watch, log_dir):
     rospy.Subscriber('/pioneer/goal_reached', Pose2D,
                      lambda m: reached.append((time.monotonic(), (m.x, m.y, m.theta))))
     goal_pub = rospy.Publisher('/pioneer/goal', Pose2D, queue_size=10)
-    with open(os.path.join(log_dir, 'move_turtle_to_goal.log'), 'w') as log:
-        node = subprocess.Popen(['rosrun', 'closed_loop_turtle', 'move_turtle_to_goal.py',
-                                 '__name:=move_turtle_to_goal'], stdout=log,
-                                stderr=subprocess.STDOUT)
-        try:
-            wait_for(lambda: goal_pub.get_num_connections() > 0, START_TIMEOUT_S,
-                     'move_turtle_to_goal subscribed to /pioneer/goal', POLL_S)
-            _teleport_to_start(cmd_pub, watch)
-            rows = []
-            for goal in GOALS:
-                watch.reset_counters()
-                count = len(reached)
-                sent = time.monotonic()
-                goal_pub.publish(Pose2D(*goal))
-                try:
-                    wait_for(lambda g=goal, c=count: any(r[1] == g for r in reached[c:]),
-                             GOAL_TIMEOUT_S, 'goal %r reached' % (goal,), POLL_S)
-                except WaitError:
-                    rows.append(_result(watch, goal, sent, None))
-                    break
-                arrived = next(r[0] for r in reached[count:] if r[1] == goal)
-                rows.append(_result(watch, goal, sent, arrived))
-            return rows
-        finally:
-            node.terminate()
-            node.wait(timeout=15)
+    node = spawn(['rosrun', 'closed_loop_turtle', 'move_turtle_to_goal.py',
+                  '__name:=move_turtle_to_goal'],
+                 log_path=os.path.join(log_dir, 'move_turtle_to_goal.log'))
+    try:
+        wait_for(lambda: goal_pub.get_num_connections() > 0, START_TIMEOUT_S,
+                 'move_turtle_to_goal subscribed to /pioneer/goal', POLL_S)
+        _teleport_to_start(cmd_pub, watch)
+        rows = []
+        for goal in GOALS:
+            watch.reset_counters()
+            count = len(reached)
+            sent = time.monotonic()
+            goal_pub.publish(Pose2D(*goal))
+            try:
+                wait_for(lambda g=goal, c=count: any(r[1] == g for r in reached[c:]),
+                         GOAL_TIMEOUT_S, 'goal %r reached' % (goal,), POLL_S)
+            except WaitError:
+                rows.append(_result(watch, goal, sent, None))
+                break
+            arrived = next(r[0] for r in reached[count:] if r[1] == goal)
+            rows.append(_result(watch, goal, sent, arrived))
+        return rows
+    finally:
+        node.stop()
 
 
 def _fmt(value, pattern):

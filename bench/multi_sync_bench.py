@@ -14,17 +14,14 @@ It prints a markdown table: medians over all robots of all runs, and maxima.
 import contextlib
 import os
 import re
-import signal
-import socket
 import statistics
-import subprocess
 import sys
 import threading
 import time
 
-import rosgraph
 import rospy
-from course_common.testing import WaitError, wait_for
+from course_common.testing import WaitError, rss_mb, spawn, wait_for
+from course_common.testing.master import Roscore
 from geometry_msgs.msg import Twist
 
 from multi_sync.msg import RobotStatus
@@ -34,12 +31,6 @@ RUN_DEADLINE_S = 90.0               # a run that has not finished by then is rep
 # roslaunch's output of the latest run with each team size goes here.
 LAUNCH_LOG = os.path.join(os.environ.get('TMPDIR', '/tmp'), 'multi_sync_bench_%d.log')
 FIRST_MOVE = re.compile(r'Robot (\d+): first move command ([0-9.]+) ms after GO')
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(('localhost', 0))
-        return s.getsockname()[1]
 
 
 class Recorder:
@@ -87,22 +78,12 @@ def robot_rss_mb(launch_pid):
             with open('/proc/%s/cmdline' % pid, 'rb') as f:
                 if b'multi_sync/move_robot' not in f.read():
                     continue
-            with open('/proc/%s/status' % pid) as f:
-                for line in f:
-                    if line.startswith('VmRSS:'):
-                        sizes.append(int(line.split()[1]) / 1024.0)
+            size = rss_mb(int(pid))
+            if size is not None:
+                sizes.append(size)
         except (OSError, IndexError, ValueError):
             continue  # the process ended while we looked
     return sizes
-
-
-def stop(launch):
-    launch.send_signal(signal.SIGINT)
-    try:
-        launch.wait(30)
-    except subprocess.TimeoutExpired:
-        os.killpg(launch.pid, signal.SIGKILL)
-        launch.wait()
 
 
 def first_move_lines(path):
@@ -120,10 +101,8 @@ def one_run(recorder, n, log_path):
     started = time.time()
     # The robots' screen output (nothing is lost on the way, unlike /rosout, whose
     # connections to new nodes may come up after their first lines).
-    with open(log_path, 'w') as log:
-        launch = subprocess.Popen(
-            ['roslaunch', 'multi_sync', 'multi_sync.launch', 'team_size:=%d' % n,
-             'monitor:=true'], stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    launch = spawn(['roslaunch', 'multi_sync', 'multi_sync.launch', 'team_size:=%d' % n,
+                    'monitor:=true'], log_path=log_path, stop_timeout_s=30.0)
     try:
         # A run that does not complete in time is reported below, not raised.
         with contextlib.suppress(WaitError):
@@ -135,7 +114,7 @@ def one_run(recorder, n, log_path):
                      max(0.0, started + RUN_DEADLINE_S - time.time()),
                      'every first-move log line', 0.1)
     finally:
-        stop(launch)
+        launch.stop()
     with recorder.lock:
         go, seen = recorder.go_stamp, dict(recorder.seen)
     sent = first_move_lines(log_path)
@@ -149,15 +128,11 @@ def one_run(recorder, n, log_path):
 
 
 def main():
-    port = free_port()
-    os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % port
-    core = subprocess.Popen(['roscore', '-p', str(port)], stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL, start_new_session=True)
     try:
-        try:
-            wait_for(rosgraph.is_master_online, 30.0, 'roscore', 0.2)
-        except WaitError:
-            sys.exit('bench: roscore did not start')
+        core = Roscore().start()
+    except WaitError as err:
+        sys.exit('bench: roscore did not start: %s' % err)
+    try:
         rospy.init_node('multi_sync_bench', disable_signals=True)
         recorder = Recorder(max(n for n, _ in TEAMS))
         rows = []
@@ -193,11 +168,7 @@ def main():
               'cmd under 20 ms at 20 robots.')
     finally:
         rospy.signal_shutdown('bench done')
-        core.send_signal(signal.SIGINT)
-        try:
-            core.wait(20)
-        except subprocess.TimeoutExpired:
-            os.killpg(core.pid, signal.SIGKILL)
+        core.stop()
 
 
 if __name__ == '__main__':

@@ -16,14 +16,14 @@ broadcasters' CPU (% of one core, utime + stime from /proc/<pid>/stat, summed), 
 """
 
 import os
-import socket
 import subprocess
 import sys
 import time
 
 import rosgraph
 import rospy
-from course_common.testing import wait_for
+from course_common.testing import cpu_ticks, rss_mb, spawn, wait_for
+from course_common.testing.master import Roscore
 from tf2_msgs.msg import TFMessage
 from turtlesim.srv import Spawn
 
@@ -31,26 +31,6 @@ TURTLES = 50
 WINDOW_S = 10.0  # CPU time comes in 10 ms ticks: 10 s resolves 0.1 % of a core
 START_DEADLINE_S = 180.0  # 50 Python processes starting on a shared 2-core machine
 CLK_TCK = os.sysconf('SC_CLK_TCK')
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(('localhost', 0))
-        return s.getsockname()[1]
-
-
-def cpu_ticks(pid):
-    with open('/proc/%d/stat' % pid) as f:
-        fields = f.read().rsplit(')', 1)[1].split()
-    return int(fields[11]) + int(fields[12])  # utime, stime
-
-
-def rss_mb(pid):
-    with open('/proc/%d/status' % pid) as f:
-        for line in f:
-            if line.startswith('VmRSS:'):
-                return int(line.split()[1]) / 1024.0
-    return 0.0
 
 
 def python_pid(proc):
@@ -78,8 +58,7 @@ def subscribed_pose_topics(master):
 
 
 def scenario(master, counter, label, commands):
-    procs = [subprocess.Popen(c, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-             for c in commands]
+    procs = [spawn(c, stop_timeout_s=20.0) for c in commands]
     try:
         wait_for(lambda: len(subscribed_pose_topics(master)) == TURTLES, START_DEADLINE_S,
                    '%s following all %d turtles' % (label, TURTLES))
@@ -96,32 +75,24 @@ def scenario(master, counter, label, commands):
                 (counter.transforms - tfs0) / elapsed)
     finally:
         for p in procs:
-            p.terminate()
+            p.interrupt()  # all at once: each takes a moment to shut down
         for p in procs:
-            try:
-                p.wait(20)
-            except subprocess.TimeoutExpired:
-                p.kill()
+            p.stop()
         wait_for(lambda: not subscribed_pose_topics(master), START_DEADLINE_S,
                    'the broadcasters of %s gone' % label)
 
 
 def main():
-    port = free_port()
-    os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % port
-    core = subprocess.Popen(['roscore', '-p', str(port)], stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
+    core = Roscore().start()
     sim = None
     try:
         master = rosgraph.Master('/tf_bench')
-        wait_for(lambda: _master_up(master), 30.0, 'roscore')
-        sim = subprocess.Popen(['rosrun', 'turtlesim', 'turtlesim_node'],
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        sim = spawn(['rosrun', 'turtlesim', 'turtlesim_node'])
         rospy.init_node('tf_bench', disable_signals=True)
         rospy.wait_for_service('/spawn', 60.0)
-        spawn = rospy.ServiceProxy('/spawn', Spawn)
+        spawn_turtle = rospy.ServiceProxy('/spawn', Spawn)
         for i in range(2, TURTLES + 1):
-            spawn(1.0 + (i % 8) * 1.2, 1.0 + (i // 8) * 1.2, 0.0, 'turtle%d' % i)
+            spawn_turtle(1.0 + (i % 8) * 1.2, 1.0 + (i // 8) * 1.2, 0.0, 'turtle%d' % i)
         counter = TfCounter()
         rosrun = ['rosrun', 'turtle_lite', 'pose_to_tf']
         rows = [
@@ -143,19 +114,7 @@ def main():
         rospy.signal_shutdown('tf_bench done')
         for proc in (sim, core):
             if proc is not None:
-                proc.terminate()
-                try:
-                    proc.wait(20)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-
-
-def _master_up(master):
-    try:
-        master.getPid()
-        return True
-    except OSError:
-        return False
+                proc.stop()
 
 
 if __name__ == '__main__':

@@ -21,17 +21,16 @@ The load generator is this same file run with `--load NAME...` (internal use).
 import math
 import os
 import random
-import socket
 import statistics
 import subprocess
 import sys
 import threading
 import time
 
-import rosgraph
 import rosnode
 import rospy
-from course_common.testing import wait_for
+from course_common.testing import WaitError, cpu_ticks, rss_mb, spawn, wait_for
+from course_common.testing.master import Roscore
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
@@ -57,26 +56,6 @@ REFERENCE = {
     "rss": 35.5,  # 34-37 MB offscreen
     "startup": 400.0, "teleport": 8.8, "spawn": 17.9, "cmd_vel": 11.7, "kill": 550.0,
 }
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("localhost", 0))
-        return s.getsockname()[1]
-
-
-def cpu_ticks(pid):
-    with open(f"/proc/{pid}/stat") as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return int(fields[11]) + int(fields[12])  # utime, stime (fields 14 and 15 of stat)
-
-
-def rss_mb(pid):
-    with open(f"/proc/{pid}/status") as f:
-        for line in f:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1]) / 1024.0
-    return math.nan
 
 
 def cpu_percent(pid, window_s):
@@ -116,13 +95,8 @@ class Bench:
     sim_command = ("rosrun", "turtle_lite", "turtlesim_node")  # what "rosrun" measures
 
     def __init__(self):
-        self.port = free_port()
-        self.env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{self.port}")
-        os.environ["ROS_MASTER_URI"] = self.env["ROS_MASTER_URI"]
-        self.devnull = open(os.devnull, "w")  # noqa: SIM115 (closed in close())
-        self.core = subprocess.Popen(["roscore", "-p", str(self.port)], env=self.env,
-                                     stdout=self.devnull, stderr=self.devnull,
-                                     start_new_session=True)
+        self.core = Roscore().start()  # sets ROS_MASTER_URI here, for us and our children
+        self.env = dict(os.environ)
         self.sim = None
         self.results = {}
         self.notes = []
@@ -130,8 +104,6 @@ class Bench:
         self._stamps = []
         self._poses = []
 
-        master = rosgraph.Master("/turtle_lite_bench")
-        wait_for(master.is_online, START_DEADLINE_S, "roscore")
         rospy.init_node("turtle_lite_bench", anonymous=True, disable_signals=True)
         self.pose_sub = rospy.Subscriber("turtle1/pose", Pose, self._on_pose, queue_size=100)
 
@@ -156,8 +128,7 @@ class Bench:
         """rosrun the simulator; return seconds until the first /turtle1/pose arrives."""
         self.clear_poses()
         t0 = time.monotonic()
-        self.sim = subprocess.Popen(list(command or self.sim_command), env=self.env,
-                                    stdout=self.devnull, stderr=self.devnull)
+        self.sim = spawn(list(command or self.sim_command))
         wait_for(lambda: self.stamps(), START_DEADLINE_S, "the first /turtle1/pose")
         return self.stamps()[0] - t0
 
@@ -166,29 +137,19 @@ class Bench:
         t0 = time.monotonic()
         rosnode.kill_nodes(["/turtlesim"])
         try:
-            code = self.sim.wait(timeout=START_DEADLINE_S)
-        except subprocess.TimeoutExpired:
-            self.sim.kill()
-            code = self.sim.wait()
-            self.notes.append("the simulator did not exit on rosnode kill; SIGKILLed")
+            code = self.sim.wait_exit(START_DEADLINE_S)
+        except WaitError:
+            code = self.sim.stop()
+            self.notes.append("the simulator did not exit on rosnode kill; stopped")
         elapsed = time.monotonic() - t0
         self.sim = None
         return elapsed, code
 
     def close(self):
-        if self.sim is not None and self.sim.poll() is None:
-            self.sim.terminate()
-            try:
-                self.sim.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                self.sim.kill()
+        if self.sim is not None:
+            self.sim.stop()
         rospy.signal_shutdown("bench done")
-        os.killpg(self.core.pid, 15)
-        try:
-            self.core.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            os.killpg(self.core.pid, 9)
-        self.devnull.close()
+        self.core.stop()
 
     # --- scenarios -----------------------------------------------------------------------
 
@@ -289,8 +250,7 @@ class Bench:
         # Raw (undeserialised) subscribers: the bench should not be the bottleneck.
         subs = [rospy.Subscriber(f"{name}/pose", rospy.AnyMsg, counter(i), queue_size=1)
                 for i, name in enumerate(names)]
-        load = subprocess.Popen([sys.executable, __file__, "--load", *names], env=self.env,
-                                stdout=self.devnull, stderr=self.devnull)
+        load = spawn([sys.executable, __file__, "--load", *names], stop_timeout_s=10.0)
         try:
             wait_for(lambda: all(counts), START_DEADLINE_S,
                        f"poses from all {n} turtles")
@@ -310,8 +270,7 @@ class Bench:
             self.results[f"rss_move_{n}"] = rss_mb(self.sim.pid)
             self.results[f"move_rate_{n}"] = (min(rates), interval_stats(self.stamps()))
         finally:
-            load.terminate()
-            load.wait(timeout=10)
+            load.stop()
             for sub in subs:
                 sub.unregister()
         # Let the 1 s cmd_vel timeout stop everyone before the next idle window.

@@ -7,14 +7,12 @@ Runs the real executables with rosrun (the demo starts its own master on a free 
 bags of the bag_report cases are written here with the rosbag API.
 """
 import os
-import shutil
 import subprocess
-import tempfile
-import unittest
 
 import rosbag
 import rospy
 import rostest
+from course_common.testing import ScratchDirTestCase
 from geometry_msgs.msg import Twist
 from std_msgs.msg import String
 from turtlesim.msg import Pose
@@ -68,18 +66,8 @@ def write_course_bag(path, seconds=4.0):
                 bag.write('/robot3/cmd_vel', Twist(), stamp + rospy.Duration(0.004))
 
 
-class TestConvoyBag(unittest.TestCase):
-
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = tempfile.mkdtemp(prefix='test_convoy_bag_')
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
-
-    def path(self, name):
-        return os.path.join(self.tmp, name)
+class TestConvoyBag(ScratchDirTestCase):
+    TMP_PREFIX = 'test_convoy_bag_'
 
     def assert_rejected(self, result, reason):
         self.assertEqual(result.returncode, 1, result.stderr)

@@ -1,17 +1,14 @@
 #!/usr/bin/env python3
 """Integration test of the course's convoy.launch (no autopilot): topics, stop, kill/restart,
 and convoy_node's fatal exit on missing or bad parameters."""
-import os
-import signal
-import subprocess
 import unittest
 
-import rosgraph
 import rosnode
 import rospy
 import rostest
 from convoy_testing import TOLERANCE_M, ConvoyWatch, distance
-from course_common.testing import wait_for
+from course_common.testing import spawn, wait_for
+from course_common.testing.master import topic_types
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 from turtlesim.srv import TeleportAbsolute
@@ -22,10 +19,6 @@ DRIVE_TIMEOUT_S = 45.0  # from the corner to the centre takes ~8 s of turtle tim
 STILL_POSES = 60  # about a second of poses at 62.5 Hz
 CONVOY_NODE_ARGS = ['_leader_pose:=/robot1/pose', '_follower_pose:=/robot2/pose',
                     '_follower_speeds:=/robot2/cmd_vel']
-
-
-def _topics():
-    return {name for name, _ in rosgraph.Master('/test').getTopicTypes()}
 
 
 class TestConvoyLaunch(unittest.TestCase):
@@ -40,12 +33,8 @@ class TestConvoyLaunch(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls):
-        if cls.restarted is not None and cls.restarted.poll() is None:
-            cls.restarted.send_signal(signal.SIGINT)
-            try:
-                cls.restarted.wait(15)
-            except subprocess.TimeoutExpired:
-                cls.restarted.kill()
+        if cls.restarted is not None:
+            cls.restarted.stop()
 
     def _wait_stopped_near(self, follower, timeout_s):
         """Waits until robot<follower> is inside the tolerance of its leader and still."""
@@ -64,7 +53,7 @@ class TestConvoyLaunch(unittest.TestCase):
                         'robot%d moved while it should stand still' % robot)
 
     def test_1_course_topics_no_turtle1(self):
-        topics = _topics()
+        topics = set(topic_types())
         for robot in (1, 2, 3):
             for suffix in ('pose', 'cmd_vel'):
                 self.assertIn('/robot%d/%s' % (robot, suffix), topics)
@@ -96,11 +85,10 @@ class TestConvoyLaunch(unittest.TestCase):
         wait_for(lambda: abs(self.watch.pose(1).x - 9.0) < 0.01, 10.0, 'robot1 at x = 9')
         self.assertGreater(self.watch.gap(2), TOLERANCE_M)
         self._assert_still(2)
-        type(self).restarted = subprocess.Popen(
-            ['rosrun', PKG, 'convoy_node', '__name:=convoy_node'] + CONVOY_NODE_ARGS,
-            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=dict(os.environ))
+        type(self).restarted = spawn(
+            ['rosrun', PKG, 'convoy_node', '__name:=convoy_node'] + CONVOY_NODE_ARGS)
         self._wait_stopped_near(2, DRIVE_TIMEOUT_S)
-        self.assertIsNone(self.restarted.poll(), 'the restarted convoy_node exited')
+        self.assertTrue(self.restarted.alive(), 'the restarted convoy_node exited')
 
     def test_4_missing_or_bad_params_are_fatal(self):
         # (name, executable, args, words the fatal message must contain); all run at once.
@@ -122,14 +110,15 @@ class TestConvoyLaunch(unittest.TestCase):
             ('autopilot_off_world', 'autopilot', ['_half_width_m:=6.0'],
              ['~half_width_m', 'walls']),
         ]
-        procs = [subprocess.Popen(['rosrun', PKG, exe, '__name:=%s' % name] + args,
-                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                  env=dict(os.environ))
+        procs = [spawn(['rosrun', PKG, exe, '__name:=%s' % name] + args)
                  for name, exe, args, _ in cases]
+        for proc in procs:
+            self.addCleanup(proc.stop)
         for (name, _, _, words), proc in zip(cases, procs, strict=True):
             with self.subTest(name=name):
-                output, _ = proc.communicate(timeout=90)
-                self.assertNotEqual(proc.returncode, 0, output)
+                code = proc.wait_exit(90)
+                output = proc.output()
+                self.assertNotEqual(code, 0, output)
                 self.assertIn('FATAL', output)
                 for word in words:
                     self.assertIn(word, output)
@@ -141,10 +130,10 @@ class TestConvoyLaunch(unittest.TestCase):
         commands = []
         sub = rospy.Subscriber('/fake/cmd_vel', Twist, commands.append)
         leader_pub = rospy.Publisher('/fake/leader_pose', Pose, queue_size=10)
-        node = subprocess.Popen(
+        node = spawn(
             ['rosrun', PKG, 'convoy_node', '__name:=convoy_fake', '_leader_pose:=/fake/leader_pose',
-             '_follower_pose:=/robot2/pose', '_follower_speeds:=/fake/cmd_vel'],
-            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=dict(os.environ))
+             '_follower_pose:=/robot2/pose', '_follower_speeds:=/fake/cmd_vel'])
+        self.addCleanup(node.stop)
         try:
             wait_for(lambda: leader_pub.get_num_connections() > 0 and sub.get_num_connections() > 0,
                      STARTUP_TIMEOUT_S, 'convoy_fake to connect')
@@ -160,8 +149,9 @@ class TestConvoyLaunch(unittest.TestCase):
             self.assertGreater(abs(commands[-1].angular.z) + commands[-1].linear.x, 0.0)
         finally:
             sub.unregister()
-            node.send_signal(signal.SIGINT)
-            output, _ = node.communicate(timeout=20)
+            node.interrupt()
+            node.wait_exit(20)
+        output = node.output()
         self.assertIn('ignoring a leader pose with non-finite fields', output)
 
 

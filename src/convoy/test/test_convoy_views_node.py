@@ -11,9 +11,8 @@ import unittest
 import rospkg
 import rospy
 import rostest
-from course_common.testing import wait_for
-from course_common.testing.views import TfPoseCheck, results_dir
-from PIL import Image
+from course_common.testing import results_dir, wait_for
+from course_common.testing.views import TfPoseCheck
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtlesim.msg import Pose
@@ -90,9 +89,8 @@ class ConvoyViewsTest(unittest.TestCase):
     def test_rviz_shows_the_convoy_view(self):
         path = os.path.join(rospkg.RosPack().get_path('convoy'), 'rviz', 'convoy.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
-            rviz.wait_subscribed(RVIZ_DEADLINE_S)
-            shot = rviz.wait_lesson_drawn(robots=3, labels=5, timeout_s=RVIZ_DEADLINE_S)
-            Image.fromarray(shot).save(os.path.join(results_dir(), 'convoy_rviz.png'))
+            rviz.capture(os.path.join(results_dir(), 'convoy_rviz.png'), robots=3, labels=5,
+                         timeout_s=RVIZ_DEADLINE_S)
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics,
                              ['/convoy_gaps', '/lesson_markers', '/tf', '/tf_static'])

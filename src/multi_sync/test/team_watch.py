@@ -1,11 +1,10 @@
 """Helpers for multi_sync's rostest nodes: watch a team on its topics, run nodes, wait."""
-import os
-import signal
-import subprocess
 import threading
 import time
 
 import rospy
+from course_common.processes import ChildProcess
+from course_common.processes import run_to_exit as run_command
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 from turtlesim.msg import Pose
@@ -105,44 +104,15 @@ class TeamWatch:
             return sum(1 for _, m in self.logs if m == text)
 
 
-class NodeProcess:
-    """A node run with rosrun as a subprocess, output captured, stopped with SIGINT."""
+class NodeProcess(ChildProcess):
+    """`rosrun multi_sync ARGS`, started at once: course_common's ChildProcess (its lines()
+    as they come; stop() is Ctrl-C, then a kill)."""
 
     def __init__(self, *args, env=None):
-        self.args = ['rosrun', 'multi_sync', *args]
-        full_env = dict(os.environ)
-        full_env.update(env or {})
-        full_env['PYTHONUNBUFFERED'] = '1'
-        self.proc = subprocess.Popen(self.args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                     env=full_env, text=True)
-        self.output = []
-        self._reader = threading.Thread(target=self._read, daemon=True)
-        self._reader.start()
-
-    def _read(self):
-        for line in self.proc.stdout:
-            self.output.append(line.rstrip('\n'))
-
-    def printed(self, text):
-        return any(text in line for line in list(self.output))
-
-    def stop(self, timeout_s=15.0):
-        """SIGINT, as Ctrl-C in a terminal; kill if it does not exit in time."""
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(timeout_s)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
-        self._reader.join(5.0)
-        return self.proc.returncode
+        super().__init__(['rosrun', 'multi_sync', *args], env=env)
+        self.start()
 
 
 def run_to_exit(args, timeout_s=60.0, env=None):
     """Run rosrun multi_sync ARGS to completion; return (exit code, stdout + stderr)."""
-    full_env = dict(os.environ)
-    full_env.update(env or {})
-    done = subprocess.run(['rosrun', 'multi_sync', *args], capture_output=True, text=True,
-                          timeout=timeout_s, env=full_env, check=False)
-    return done.returncode, done.stdout + done.stderr
+    return run_command(['rosrun', 'multi_sync', *args], timeout_s, env=env)

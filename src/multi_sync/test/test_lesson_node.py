@@ -56,7 +56,7 @@ class TestLesson(unittest.TestCase):
             # before its /rosout connection is up, so they are read from its output).
             wait_for(lambda: monitor.printed('All robots GO!'), 10.0, 'the GO log line')
             for i in watch.ids():
-                self.assertTrue(monitor.printed('Robot %d is ready!' % i), monitor.output)
+                self.assertTrue(monitor.printed('Robot %d is ready!' % i), monitor.lines())
             # Logged just after the first command, so it may trail the command a little.
             wait_for(lambda: all(watch.logged("Robot %d: Team is ready. Let's move!" % i)
                                  for i in watch.ids()), 10.0, "every robot's 'Let's move!'")
@@ -84,7 +84,7 @@ class TestLesson(unittest.TestCase):
             if n > 1:
                 self.assertTrue(any('nearest teammate is robot' in m for _, m in watch.logs))
         finally:
-            self.assertEqual(monitor.stop(), 0, '\n'.join(monitor.output))
+            self.assertEqual(monitor.stop(), 0, '\n'.join(monitor.lines()))
             watch.close()
 
     def _settled(self, watch):

@@ -8,8 +8,8 @@ import unittest
 import rospkg
 import rospy
 import rostest
-from course_common.testing.views import TfPoseCheck, results_dir
-from PIL import Image
+from course_common.testing import results_dir
+from course_common.testing.views import TfPoseCheck
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
 
@@ -32,10 +32,8 @@ class MultiSyncViewsTest(unittest.TestCase):
     def test_rviz_shows_the_team_view(self):
         path = os.path.join(rospkg.RosPack().get_path('multi_sync'), 'rviz', 'multi_sync.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
-            rviz.wait_subscribed(RVIZ_DEADLINE_S)
-            shot = rviz.wait_lesson_drawn(robots=len(ROBOTS), labels=len(ROBOTS),
-                                          timeout_s=RVIZ_DEADLINE_S)
-            Image.fromarray(shot).save(os.path.join(results_dir(), 'multi_sync_rviz.png'))
+            rviz.capture(os.path.join(results_dir(), 'multi_sync_rviz.png'), robots=len(ROBOTS),
+                         labels=len(ROBOTS), timeout_s=RVIZ_DEADLINE_S)
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics, ['/lesson_markers', '/tf', '/tf_static'])
             self.assertEqual(error_lines(rviz.log()), [], rviz.log())

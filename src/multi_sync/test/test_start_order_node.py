@@ -54,24 +54,24 @@ class TestStartOrder(unittest.TestCase):
         wait_for(watch.go_count, START_S, 'GO after the four robots are ready')
         wait_for(lambda: watch.moved(range(4)), EVENT_S, 'robots 0..3 to move')
         for i, robot in robots.items():
-            self.assertTrue(robot.printed('Robot %d published ready status' % i), robot.output)
+            self.assertTrue(robot.printed('Robot %d published ready status' % i), robot.lines())
         self.assertEqual(watch.go_count(), 1)
         self.assertNotIn(4, watch.first_move_wall)
 
         # 2. Monitor restarted after GO: it collects the (moving) robots again and says GO.
-        self.assertEqual(monitor.stop(), 0, monitor.output)
+        self.assertEqual(monitor.stop(), 0, monitor.lines())
         monitor = self.start('monitor', '4')
         wait_for(lambda: monitor.printed('All robots GO!'), EVENT_S,
                  'the restarted monitor to count the team again')
         for i in range(4):
-            self.assertTrue(monitor.printed('Robot %d is ready!' % i), monitor.output)
+            self.assertTrue(monitor.printed('Robot %d is ready!' % i), monitor.lines())
 
         # 3. A robot started after GO does not wait for a team that is already gone.
         self.start('move_robot', '4')
         wait_for(lambda: watch.moved([4]), EVENT_S, 'robot 4, started after GO, to move')
 
         # 4. A robot stopped with Ctrl-C sends a stop; restarted, it moves again.
-        self.assertEqual(robots[2].stop(), 0, robots[2].output)
+        self.assertEqual(robots[2].stop(), 0, robots[2].lines())
         wait_for(lambda: watch.last_cmd.get(2) == 0.0, EVENT_S, 'the stop command of robot 2')
         with watch.lock:
             del watch.first_move_wall[2]
@@ -79,7 +79,7 @@ class TestStartOrder(unittest.TestCase):
         wait_for(lambda: watch.moved([2]), EVENT_S, 'robot 2, restarted after GO, to move')
 
         # The monitor survived all of it.
-        self.assertIsNone(monitor.proc.poll(), monitor.output)
+        self.assertIsNone(monitor.returncode, monitor.lines())
         watch.close()
 
     def test_one_go_for_a_subscriber_connecting_as_go_goes_out(self):
@@ -106,11 +106,11 @@ class TestStartOrder(unittest.TestCase):
             wait_for(lambda: monitor.printed(LATE_READY % 0) or len(gos) > 1, EVENT_S,
                      'the monitor to handle the re-announcement after GO')
             self.assertEqual(len(gos), 1, 'one GO, heard by every robot')
-            self.assertTrue(monitor.printed('All robots GO!'), monitor.output)
+            self.assertTrue(monitor.printed('All robots GO!'), monitor.lines())
         finally:
             sub.unregister()
             pub.unregister()
-        self.assertEqual(monitor.stop(), 0, monitor.output)
+        self.assertEqual(monitor.stop(), 0, monitor.lines())
 
     def test_monitor_ignores_bad_statuses(self):
         # A monitor of two in its own namespace, fed by hand on /bad/team_status.
@@ -127,9 +127,9 @@ class TestStartOrder(unittest.TestCase):
         wait_for(lambda: monitor.printed('Robot 1 is ready!'), EVENT_S, 'robot 1 counted')
         wait_for(lambda: monitor.printed('Ignoring status with robot_id 25'), EVENT_S,
                  'a warning about id 25')
-        self.assertEqual(sum('is ready!' in line for line in monitor.output), 1,
-                         monitor.output)
-        self.assertFalse(monitor.printed('All robots GO!'), monitor.output)
+        self.assertEqual(sum('is ready!' in line for line in monitor.lines()), 1,
+                         monitor.lines())
+        self.assertFalse(monitor.printed('All robots GO!'), monitor.lines())
 
         # The watch also heard the fake GO above (this node's own message): count the
         # monitor's only.
@@ -144,8 +144,8 @@ class TestStartOrder(unittest.TestCase):
         pub.publish(status(1))
         wait_for(lambda: monitor.printed(LATE_READY % 1), EVENT_S, 'the late ready logged')
         self.assertEqual(len(monitor_gos()), 1, 'GO sent again after a late ready')
-        self.assertIsNone(monitor.proc.poll(), monitor.output)
-        self.assertEqual(monitor.stop(), 0, monitor.output)
+        self.assertIsNone(monitor.returncode, monitor.lines())
+        self.assertEqual(monitor.stop(), 0, monitor.lines())
         pub.unregister()
         watch.close()
 

@@ -1,78 +1,55 @@
 #!/usr/bin/env python3
 """Integration test of Lab 2's four commands: `rosrun beginner_tutorials talker`, `listener`,
 `talker.py` and `listener.py`, run as printed, and two talker.py side by side."""
-import os
 import re
-import subprocess
-import sys
 import time
 import unittest
 
-import rospkg
 import rospy
 import rostest
-from course_common.testing import wait_for
+from course_common.testing import consecutive, info_texts, spawn, wait_for
+from course_common.testing import numbers_in as counts
+from course_common.testing.master import publishers_of, subscribers_of
+from course_common.testing.recorders import LogRecorder, Recorder
 from rosgraph_msgs.msg import Log
-
-# chat_pkg's rostest helpers (recorder of /chatter and /rosout, Ctrl-C, counts), reused: the
-# C++ talker and listener of the lab are chat_pkg's nodes.
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('chat_pkg'), 'test'))
-from test_chat_node import (
-    START_DEADLINE_S,
-    Recorder,
-    consecutive,
-    counts,
-    publishers_of,
-    stop,
-    subscribers_of,
-)
+from std_msgs.msg import String
 
 PKG = 'beginner_tutorials'
+START_DEADLINE_S = 30.0  # rosrun + rospy start-up on a loaded 2-core machine
+EXIT_DEADLINE_S = 30.0  # Ctrl-C to exit, for a node that may be mid-registration under load
 MESSAGES_WANTED = 20  # two seconds at 10 Hz: enough to see an order
 SIDE_BY_SIDE_WANTED = 10  # messages each of two talker.py sends while the other runs
 TEXT = re.compile(r'^hello world (\d+)$')  # talker: the lab's "hello world " << count
 HEARD = re.compile(r'^I heard: \[hello world (\d+)\]$')  # listener: "I heard: [%s]"
 TIME_TEXT = re.compile(r'^hello world (\d+\.\d+)$')  # talker.py: "hello world %s" % get_time()
-SCREEN = re.compile(r'^\[INFO\] \[[\d.]+\]: (.*)$')  # rospy's INFO line on the terminal
 SAME_NAME = 'new node registered with same name'  # the master shutting an older node down
-
-
-class InfoRecorder(Recorder):
-    """chat_pkg's Recorder keeping only the INFO lines of /rosout: the nodes' own lines, not
-    rospy's warnings and errors (a peer that drops a connection under load logs one)."""
-
-    def _on_log(self, msg):
-        if msg.level == Log.INFO:
-            super()._on_log(msg)
 
 
 def rosrun(exe):
     """`rosrun beginner_tutorials EXE`, as the lab types it, its screen lines captured."""
-    return subprocess.Popen(['rosrun', PKG, exe], stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True, env=dict(os.environ))
+    return spawn(['rosrun', PKG, exe], stop_timeout_s=EXIT_DEADLINE_S)
+
+
+def stop(proc):
+    """Ctrl-C; (exit code, screen output), the code None if it had to be killed."""
+    return proc.stop(), proc.output()
 
 
 def screen(output):
     """The texts of the INFO lines in a node's terminal output, in order."""
-    return [m.group(1) for m in map(SCREEN.match, output.splitlines()) if m]
+    return info_texts(output.splitlines())
 
 
 def times(texts):
     """The times in talker.py's texts (fails on a text that is not "hello world <time>")."""
-    found = []
-    for text in texts:
-        match = TIME_TEXT.match(text)
-        if not match:
-            raise AssertionError('unexpected text %r (expected %s)' % (text, TIME_TEXT.pattern))
-        found.append(float(match.group(1)))
-    return found
+    return counts(texts, TIME_TEXT, float)
 
 
 def running(proc, what):
     """Fails at once, with the node's output, when proc has exited: waiting cannot help."""
-    if proc.poll() is not None:
-        raise AssertionError('%s exited (code %s): %s' % (what, proc.returncode,
-                                                           proc.communicate()[0]))
+    if proc.exited():
+        proc.wait_exit()  # and its last lines read
+        raise AssertionError('%s exited (code %s): %s' % (what, proc.returncode, proc.output()))
     return True
 
 
@@ -91,7 +68,10 @@ class TestTutorials(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_tutorials')
-        cls.rec = InfoRecorder()
+        cls.chatter = Recorder('/chatter', String, queue_size=1000)
+        # The nodes' own INFO lines only, not rospy's warnings and errors (a peer that drops
+        # a connection under load logs one).
+        cls.rosout = LogRecorder(accept=lambda m: m.level == Log.INFO, connect=False)
 
     def tearDown(self):
         # Each test stops its nodes: the next one starts with nobody on /chatter.
@@ -99,11 +79,11 @@ class TestTutorials(unittest.TestCase):
                  'every talker to leave /chatter')
 
     def _wait_chatter(self, proc, node, n):
-        wait_for(lambda: running(proc, node) and len(self.rec.chatter(node)) >= n,
+        wait_for(lambda: running(proc, node) and len(self.chatter.data(node)) >= n,
                  START_DEADLINE_S, '%d messages from %s on /chatter' % (n, node))
 
     def _wait_logs(self, proc, node, n):
-        wait_for(lambda: running(proc, node) and len(self.rec.logs(node)) >= n,
+        wait_for(lambda: running(proc, node) and len(self.rosout.lines(node=node)) >= n,
                  START_DEADLINE_S, '%d lines of %s on /rosout' % (n, node))
 
     def test_1_talker_and_listener(self):
@@ -117,12 +97,12 @@ class TestTutorials(unittest.TestCase):
         self.assertEqual(talker_code, 0, talker_out)
         self.assertEqual(listener_code, 0, listener_out)
         # The talker's counts arrive in order on /chatter (its first may go before we connect).
-        self.assertTrue(consecutive(counts(self.rec.chatter('/talker'), TEXT)))
+        self.assertTrue(consecutive(counts(self.chatter.data('/talker'), TEXT)))
         # Its terminal shows every count from 0, as the lab's screen does.
         said = counts(screen(talker_out), TEXT)
         self.assertEqual(said, list(range(len(said))), talker_out)
         # The listener hears consecutive counts the talker said, on /rosout and on its terminal.
-        for heard in (counts(self.rec.logs('/listener'), HEARD),
+        for heard in (counts(self.rosout.lines(node='/listener'), HEARD),
                       counts(screen(listener_out), HEARD)):
             self.assertTrue(consecutive(heard), heard)
             self.assertLessEqual(set(heard), set(said), 'heard a count never said')
@@ -142,7 +122,7 @@ class TestTutorials(unittest.TestCase):
         self.assertEqual(listener_code, 0, listener_out)
         # "hello world <rospy.get_time()>": times of this run, increasing, none left out of
         # the terminal's lines (rate is not asserted: timing goes in benchmarks).
-        sent = self.rec.chatter(talker_name)
+        sent = self.chatter.data(talker_name)
         stamps = times(sent)
         self.assertTrue(all(a < b for a, b in zip(stamps, stamps[1:], strict=False)), stamps)
         self.assertTrue(started <= stamps[0] and stamps[-1] <= waited, (started, stamps, waited))
@@ -150,7 +130,7 @@ class TestTutorials(unittest.TestCase):
         times(said)
         self.assertLessEqual(set(sent), set(said), talker_out)
         # The listener prefixes its own caller id, with no space: "/listener_<pid>_<ms>I heard".
-        for lines in (self.rec.logs(listener_name), screen(listener_out)):
+        for lines in (self.rosout.lines(node=listener_name), screen(listener_out)):
             self.assertTrue(lines, listener_out)
             for line in lines:
                 self.assertTrue(line.startswith(listener_name + 'I heard hello world '), line)
@@ -167,7 +147,7 @@ class TestTutorials(unittest.TestCase):
             self._wait_chatter(second, second_name, SIDE_BY_SIDE_WANTED)
             # The first keeps talking now that the second runs too: no name clash.
             self._wait_chatter(first, first_name,
-                               len(self.rec.chatter(first_name)) + SIDE_BY_SIDE_WANTED)
+                               len(self.chatter.data(first_name)) + SIDE_BY_SIDE_WANTED)
             self.assertLessEqual({first_name, second_name}, publishers_of('/chatter'))
         finally:
             first_code, first_out = stop(first)
@@ -177,7 +157,7 @@ class TestTutorials(unittest.TestCase):
             self.assertEqual(code, 0, output)
             self.assertNotIn(SAME_NAME, output)
             self.assertNotIn('Traceback', output)
-            stamps = times(self.rec.chatter(name))
+            stamps = times(self.chatter.data(name))
             self.assertTrue(all(a < b for a, b in zip(stamps, stamps[1:], strict=False)), name)
 
 

@@ -3,27 +3,16 @@
 (one behind, one across the heading seam), a new goal taking over, bad goals and poses, bad
 gains."""
 import math
-import os
-import sys
 import threading
 import unittest
 
-import rospkg
 import rospy
 import rostest
 from course_common.angles import wrap_angle
+from course_common.testing import START_DEADLINE_S, spawn, wait_for
+from course_common.testing.master import publisher_has_connected
+from course_common.testing.recorders import LogRecorder, Recorder
 from geometry_msgs.msg import Pose2D, Twist
-
-# turtle_lite's rostest helpers (recorders of topics and /rosout, a process runner), reused.
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('turtle_lite'), 'test'))
-from sim_support import (
-    START_DEADLINE_S,
-    LogRecorder,
-    Recorder,
-    Tool,
-    publisher_has_connected,
-    wait_for,
-)
 
 CONTROLLER = '/move_turtle_to_goal'
 GOAL_DEADLINE_S = 90.0  # the longest goal is ~10 m at 1.2 m/s (9 s): margin for a loaded machine
@@ -176,7 +165,7 @@ class TestGoToGoal(unittest.TestCase):
                             (['_k_alpha:=2.0'], 'k_alpha must be greater than k_rho'),
                             (['_rate_hz:=fast'], '~rate_hz = \'fast\'')):
             with self.subTest(args=args):
-                tool = Tool(['rosrun', 'closed_loop_turtle', 'move_turtle_to_goal.py', *args])
+                tool = spawn(['rosrun', 'closed_loop_turtle', 'move_turtle_to_goal.py', *args])
                 self.addCleanup(tool.stop)
                 self.assertEqual(tool.wait_exit(START_DEADLINE_S), 1, tool.output())
                 self.assertTrue(tool.lines_with(words), tool.output())

@@ -1,31 +1,19 @@
 #!/usr/bin/env python3
 """Integration test of move_turtle: the slide's launch file (turtle1), turtle2 by argv, the wall,
 shutdown, and bad command lines."""
-import os
 import re
 import signal
-import sys
 import unittest
 
 import rosnode
-import rospkg
 import rospy
 import rostest
+from course_common.testing import START_DEADLINE_S, spawn, wait_for
+from course_common.testing.master import publisher_has_connected
+from course_common.testing.recorders import LogRecorder, Recorder
+from course_common.testing.turtlesim import WORLD, PoseRecorder
 from geometry_msgs.msg import Twist
 from turtlesim.srv import Spawn, TeleportAbsolute
-
-# turtle_lite's rostest helpers (recorders of topics and /rosout, a process runner), reused.
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('turtle_lite'), 'test'))
-from sim_support import (
-    START_DEADLINE_S,
-    WORLD,
-    LogRecorder,
-    PoseRecorder,
-    Recorder,
-    Tool,
-    publisher_has_connected,
-    wait_for,
-)
 
 SPEED_MPS = 0.5  # the slide's FORWARD_SPEED_MPS; exact in float32
 MOVED_M = 0.2  # a turtle that went this far along +x is moving forward
@@ -64,7 +52,7 @@ class TestMoveTurtle(unittest.TestCase):
         rospy.ServiceProxy('/spawn', Spawn)(*TURTLE2_START, 'turtle2')
         poses = PoseRecorder('/turtle2/pose', keep=1)
         commands = Recorder('/turtle2/cmd_vel', Twist)
-        tool = Tool(['rosrun', 'my_turtle', 'move_turtle', 'turtle2', '__name:=move_turtle2'])
+        tool = spawn(['rosrun', 'my_turtle', 'move_turtle', 'turtle2', '__name:=move_turtle2'])
         self.addCleanup(tool.stop)
         tool.wait_line('Starting to move forward', START_DEADLINE_S)
         line = tool.wait_line('x: ').split(']: ', 1)[1]  # after rospy's "[INFO] [stamp]: "
@@ -97,7 +85,7 @@ class TestMoveTurtle(unittest.TestCase):
                  (['~mine'], 'is private'))
         for args, words in cases:
             with self.subTest(args=args):
-                tool = Tool(['rosrun', 'my_turtle', 'move_turtle', *args])
+                tool = spawn(['rosrun', 'my_turtle', 'move_turtle', *args])
                 self.addCleanup(tool.stop)
                 self.assertEqual(tool.wait_exit(START_DEADLINE_S), 1, tool.output())
                 self.assertTrue(tool.lines_with(words), tool.output())

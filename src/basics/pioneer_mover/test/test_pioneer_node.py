@@ -2,29 +2,17 @@
 """Integration test of pioneer.launch: the stand-in Pioneer's graph and Pose2D, and
 pioneer_interface.py's quarter speed, from a Twist and from the teleop's arrow keys."""
 import math
-import os
-import sys
 import unittest
-import xmlrpc.client
 
-import rosgraph
-import rospkg
 import rospy
 import rostest
+from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, wait_for
+from course_common.testing.master import publisher_has_connected, topic_types
+from course_common.testing.recorders import LogRecorder, Recorder
+from course_common.testing.turtlesim import run_teleop
 from geometry_msgs.msg import Pose2D, Twist
 from turtlesim.msg import Pose
 from turtlesim.srv import TeleportAbsolute
-
-# turtle_lite's rostest helpers (its pseudo-terminal teleop driver too), reused.
-sys.path.insert(0, os.path.join(rospkg.RosPack().get_path('turtle_lite'), 'test'))
-from sim_support import (
-    EVENT_DEADLINE_S,
-    START_DEADLINE_S,
-    LogRecorder,
-    PtyTeleop,
-    Recorder,
-    wait_for,
-)
 
 INTERFACE = '/pioneer_interface'
 POSE_TOL = 1e-5  # float32 pose fields against float64 values
@@ -42,17 +30,6 @@ def _values(twist):
             twist.angular.x, twist.angular.y, twist.angular.z)
 
 
-def connected(publisher_node, subscriber_node, topic):
-    """True once publisher_node lists an outbound connection of topic to subscriber_node."""
-    try:
-        uri = rosgraph.Master(rospy.get_name()).lookupNode(publisher_node)
-        code, _, info = xmlrpc.client.ServerProxy(uri).getBusInfo(rospy.get_name())
-    except (rosgraph.MasterError, OSError):
-        return False
-    return code == 1 and any(c[1] == subscriber_node and c[2] == 'o' and c[4] == topic
-                             for c in info)
-
-
 class TestPioneer(unittest.TestCase):
 
     @classmethod
@@ -62,13 +39,13 @@ class TestPioneer(unittest.TestCase):
         cls.pose2d = Recorder('/pioneer/pose', Pose2D, keep=1)
         wait_for(lambda: cls.turtle.latest() and cls.pose2d.latest(), START_DEADLINE_S,
                  'the first /pioneer/turtle_pose and /pioneer/pose')
-        wait_for(lambda: connected(INTERFACE, '/turtlesim', '/pioneer/cmd_vel'), START_DEADLINE_S,
-                 'pioneer_interface connected to the simulator')
+        wait_for(lambda: publisher_has_connected(INTERFACE, '/pioneer/cmd_vel', '/turtlesim'),
+                 START_DEADLINE_S, 'pioneer_interface connected to the simulator')
         cls.logs = LogRecorder(INTERFACE)
         cls.teleop_cmd = rospy.Publisher('/turtle1/cmd_vel', Twist, queue_size=10)
-        wait_for(lambda: connected(rospy.get_name(), INTERFACE, '/turtle1/cmd_vel'),
+        wait_for(lambda: publisher_has_connected(rospy.get_name(), '/turtle1/cmd_vel', INTERFACE),
                  START_DEADLINE_S, 'this test connected to pioneer_interface')
-        wait_for(lambda: connected(INTERFACE, rospy.get_name(), '/pioneer/cmd_vel'),
+        wait_for(lambda: publisher_has_connected(INTERFACE, '/pioneer/cmd_vel', rospy.get_name()),
                  START_DEADLINE_S, 'pioneer_interface connected to this test')
 
     def _commands_after_clear(self, n, what):
@@ -78,7 +55,7 @@ class TestPioneer(unittest.TestCase):
         return self.commands.messages()[:n]
 
     def test_1_graph_is_the_labs(self):
-        types = dict(rosgraph.Master(rospy.get_name()).getTopicTypes())
+        types = topic_types()
         self.assertEqual(types['/pioneer/pose'], 'geometry_msgs/Pose2D')
         self.assertEqual(types['/pioneer/cmd_vel'], 'geometry_msgs/Twist')
         self.assertEqual(types['/pioneer/turtle_pose'], 'turtlesim/Pose')
@@ -112,10 +89,10 @@ class TestPioneer(unittest.TestCase):
         self.assertEqual([_values(m) for m in got], [(0.25, 0.0, 0.0, 0.0, 0.0, 0.0)])
 
     def test_5_teleop_arrow_keys_drive_at_quarter_speed(self):
-        teleop = PtyTeleop(argv=('rosrun', 'turtlesim', 'turtle_teleop_key'))  # as the lab
+        teleop = run_teleop(('rosrun', 'turtlesim', 'turtle_teleop_key'))  # as the lab
         self.addCleanup(teleop.close)
         wait_for(lambda: BANNER_LAST in teleop.output(), START_DEADLINE_S, 'the teleop banner')
-        wait_for(lambda: connected('/teleop_turtle', INTERFACE, '/turtle1/cmd_vel'),
+        wait_for(lambda: publisher_has_connected('/teleop_turtle', '/turtle1/cmd_vel', INTERFACE),
                  START_DEADLINE_S, 'the teleop connected to pioneer_interface')
         self.commands.clear()
         start = self.pose2d.latest()

@@ -6,31 +6,13 @@ rosgraph), so the graph they check is exactly the one the launch file started.
 import os
 import struct
 import subprocess
-import sys
-import tempfile
 
 import pydot
 from course_common.testing import wait_for
 
 RUN_DEADLINE_S = 60.0  # one `rosrun rqt_graph rqt_graph` (Python start-up, dot) under load
 GRAPH_DEADLINE_S = 60.0  # the launch file's nodes all registered (the convoy spawns turtles)
-GTEST_OUTPUT = '--gtest_output=xml:'
 PNG_SIGNATURE = b'\x89PNG\r\n\x1a\n'
-
-
-def results_dir():
-    """Where a test keeps the pictures it made, for a person to look at: beside its results.
-
-    rostest hands each test node --gtest_output=xml:<results file>; elsewhere, a temp dir.
-    """
-    for arg in sys.argv:
-        if arg.startswith(GTEST_OUTPUT):
-            path = os.path.dirname(arg[len(GTEST_OUTPUT):])
-            break
-    else:
-        path = os.path.join(tempfile.gettempdir(), 'rqt_graph_test')
-    os.makedirs(path, exist_ok=True)
-    return path
 
 
 def rqt_graph(*args, env=None, cwd=None):

@@ -2,16 +2,15 @@
 """rqt_graph on chat.launch: the DOT, PNG and SVG it writes, nodes coming and going, errors."""
 import os
 import shutil
-import signal
-import subprocess
 import tempfile
-import unittest
 
 import rostest
-from graph_support import png_size, results_dir, rqt_graph, wait_graph
+from course_common.testing import ScratchDirTestCase, results_dir, spawn
+from graph_support import png_size, rqt_graph, wait_graph
 from PIL import Image
 
 PKG = 'rqt_graph'
+EXIT_DEADLINE_S = 30.0  # Ctrl-C to exit, for a node that may be mid-registration under load
 CHAT_NODES = {'/talker', '/listener'}
 CHAT_EDGES = {('/talker', '/chatter'), ('/chatter', '/listener')}
 
@@ -20,17 +19,8 @@ def is_chat(graph):
     return graph.nodes == CHAT_NODES and graph.edges == CHAT_EDGES
 
 
-class TestGraphChat(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = tempfile.mkdtemp(prefix='rqt_graph_chat_')
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
-
-    def path(self, name):
-        return os.path.join(self.tmp, name)
+class TestGraphChat(ScratchDirTestCase):
+    TMP_PREFIX = 'rqt_graph_chat_'
 
     def test_1_talker_chatter_listener(self):
         graph = wait_graph(self.path('chat.dot'), is_chat, 'talker -> /chatter -> listener')
@@ -41,8 +31,8 @@ class TestGraphChat(unittest.TestCase):
 
     def test_2_rosout_hidden_unless_all(self):
         # rostest starts no rosout node; roscore does: start one, as roscore would.
-        rosout = subprocess.Popen(['rosrun', 'rosout', 'rosout'], stdout=subprocess.DEVNULL,
-                                  stderr=subprocess.DEVNULL)
+        rosout = spawn(['rosrun', 'rosout', 'rosout'])
+        self.addCleanup(rosout.stop)
         try:
             graph = wait_graph(self.path('all.dot'), lambda g: '/rosout' in g.nodes,
                                'the /rosout node with --all', '--all')
@@ -53,8 +43,8 @@ class TestGraphChat(unittest.TestCase):
                             <= graph.edges, graph)
             wait_graph(self.path('quiet.dot'), is_chat, 'the chat graph without /rosout')
         finally:
-            rosout.send_signal(signal.SIGINT)
-            rosout.wait(30)
+            rosout.interrupt()
+            rosout.wait_exit(EXIT_DEADLINE_S)
 
     def test_3_png_and_svg(self):
         wait_graph(self.path('wait.dot'), is_chat, 'the chat graph')
@@ -75,16 +65,16 @@ class TestGraphChat(unittest.TestCase):
             self.assertIn(label, text)
 
     def test_4_nodes_come_and_go(self):
-        talker2 = subprocess.Popen(['rosrun', 'chat_pkg', 'talker', '__name:=talker2'],
-                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        talker2 = spawn(['rosrun', 'chat_pkg', 'talker', '__name:=talker2'])
+        self.addCleanup(talker2.stop)
         try:
             wait_graph(self.path('two.dot'),
                        lambda g: g.nodes == CHAT_NODES | {'/talker2'}
                        and g.edges == CHAT_EDGES | {('/talker2', '/chatter')},
                        'talker2 -> /chatter in the graph')
         finally:
-            talker2.send_signal(signal.SIGINT)
-            talker2.wait(30)
+            talker2.interrupt()
+            talker2.wait_exit(EXIT_DEADLINE_S)
         wait_graph(self.path('one.dot'), is_chat, 'talker2 gone from the graph')
 
     def test_5_no_display_writes_png_in_cwd(self):

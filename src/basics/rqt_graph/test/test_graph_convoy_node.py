@@ -2,11 +2,10 @@
 """rqt_graph on the course's convoy.launch: the nodes, topics and edges a student expects."""
 import os
 import shutil
-import tempfile
-import unittest
 
 import rostest
-from graph_support import png_size, results_dir, rqt_graph, wait_graph
+from course_common.testing import ScratchDirTestCase, results_dir
+from graph_support import png_size, rqt_graph, wait_graph
 from PIL import Image
 
 PKG = 'rqt_graph'
@@ -33,16 +32,14 @@ def is_convoy(graph):
     return graph.nodes == NODES and graph.edges == EDGES
 
 
-class TestGraphConvoy(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.tmp = tempfile.mkdtemp(prefix='rqt_graph_convoy_')
-        cls.graph = wait_graph(os.path.join(cls.tmp, 'convoy.dot'), is_convoy,
-                               'the convoy graph: turtlesim, convoy_node, convoy2_node')
+class TestGraphConvoy(ScratchDirTestCase):
+    TMP_PREFIX = 'rqt_graph_convoy_'
 
     @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.tmp, ignore_errors=True)
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.graph = wait_graph(os.path.join(cls.tmp, 'convoy.dot'), is_convoy,
+                               'the convoy graph: turtlesim, convoy_node, convoy2_node')
 
     def test_nodes_topics_edges(self):
         self.assertEqual(self.graph.topics, TOPICS)

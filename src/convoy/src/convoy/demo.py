@@ -16,7 +16,7 @@ import rosgraph
 import rospkg
 import rospy
 from course_common.startup import init_node
-from course_common.testing import WaitError, wait_for
+from course_common.waiting import WaitError, wait_for
 from turtle_lite.rviz_snapshot import snapshot
 from turtle_lite.srv import SaveImage
 
@@ -113,7 +113,7 @@ def run(args):
         if recorder.exited():
             failed, reason = recorder, 'rosbag record exited before the end of the run'
         print('convoy_demo: FAILED: %s\nlast lines of %s:\n%s'
-              % (reason, failed.log_path, failed.log_tail()), file=sys.stderr)
+              % (reason, failed.log_path, failed.tail()), file=sys.stderr)
         return 1
     finally:
         rospy.signal_shutdown('convoy_demo finished')

@@ -5,7 +5,7 @@ bag_report) reads it, and the demo's table and figures are made from it afterwar
 """
 import os
 
-from convoy.harness import ChildProcess
+from course_common.processes import ChildProcess
 
 # rosbag stops recording with less than 1 GB free by default; a 30 s demo bag is about 1 MB.
 MIN_FREE_SPACE = '100M'
@@ -25,10 +25,9 @@ class BagRecorder(ChildProcess):
     the recorder subscribes to them by name.
     """
 
-    stop_timeout_s = 15.0  # the recorder flushes its buffer and writes the index on SIGINT
-
     def __init__(self, bag_path, topics, log_path, node_name='convoy_bag_record'):
-        super().__init__(log_path)
+        # The recorder flushes its buffer and writes the index on SIGINT.
+        super().__init__(log_path=log_path, stop_timeout_s=15.0)
         self.bag_path = bag_path
         self.topics = topics
         self.node_name = node_name
@@ -37,7 +36,7 @@ class BagRecorder(ChildProcess):
         for stale in (self.bag_path, self.bag_path + '.active'):
             if os.path.exists(stale):
                 os.remove(stale)  # a bag of an earlier run must not pass for this one
-        self._spawn(['rosrun', 'rosbag', 'record', '--min-space', MIN_FREE_SPACE,
+        super().start(['rosrun', 'rosbag', 'record', '--min-space', MIN_FREE_SPACE,
                      '-O', self.bag_path, '__name:=%s' % self.node_name] + self.topics)
         return self
 

@@ -1,19 +1,18 @@
 """Run a team's processes on the hosts of multihost.hosts and watch it (tests and bench).
 
-Team starts commands inside host namespaces, each in its own process group with its log in
-a file, and stops them all at close (also at interpreter exit). Probe reads the JSON events
-of a team_probe_node running on a host.
+Team starts commands inside host namespaces, each a course_common ChildProcess (a session of
+its own, its log in a file), and stops them all at close (also at interpreter exit). Probe
+reads the JSON events of a team_probe_node running on a host.
 """
 import atexit
-import contextlib
 import json
 import math
 import os
-import signal
-import subprocess
 import sys
 import threading
 import time
+
+from course_common.processes import ChildProcess, run_to_exit
 
 from multihost import hosts as hosts_mod
 
@@ -31,21 +30,22 @@ class Team:
         atexit.register(self.close)
 
     def env(self, i, extra=None):
+        """The environment of a process on host i, as changes to this process's (a value None
+        removes a variable): what hosts.host_env gives, ROS_HOME in the log folder, extra."""
         env = hosts_mod.host_env(i)
         env['ROS_HOME'] = os.path.join(self.log_dir, 'ros_home')
         env['PYTHONUNBUFFERED'] = '1'
         env.update(extra or {})
-        return {k: v for k, v in env.items() if v is not None}
+        return {**{k: None for k in os.environ if k not in env}, **env}
 
-    def start(self, name, i, command, extra_env=None, stdout=None):
-        """Start command (argv list) on host i as `name`; env values None unset a variable."""
+    def start(self, name, i, command, extra_env=None, on_line=None):
+        """Start command (argv list) on host i as `name`; env values None unset a variable.
+        on_line: called with each line of its output (stdout and stderr)."""
         if name in self.procs:
             raise ValueError('a process named %s already runs' % name)
-        log = open(self.log_path(name), 'w', encoding='utf-8')  # noqa: SIM115 (kept open)
-        proc = subprocess.Popen(self.hosts.argv(i, command), env=self.env(i, extra_env),
-                                stdout=stdout or log, stderr=log, start_new_session=True,
-                                text=True)
-        proc.log_file = log
+        proc = ChildProcess(self.hosts.argv(i, command), env=self.env(i, extra_env),
+                            log_path=self.log_path(name), stop_timeout_s=STOP_WAIT_S,
+                            on_line=on_line).start()
         self.procs[name] = proc
         return proc
 
@@ -61,44 +61,32 @@ class Team:
 
     def exited(self, names=None):
         """{name: exit status} of the processes (of names) that are no longer running."""
-        return {n: p.poll() for n, p in self.procs.items()
-                if (names is None or n in names) and p.poll() is not None}
+        return {n: p.returncode for n, p in self.procs.items()
+                if (names is None or n in names) and p.exited()}
 
     def run(self, i, command, extra_env=None, timeout_s=30.0):
         """Run command on host i to completion; (status, output)."""
-        result = subprocess.run(self.hosts.argv(i, command), env=self.env(i, extra_env),
-                                capture_output=True, text=True, timeout=timeout_s, check=False)
-        return result.returncode, result.stdout + result.stderr
+        return run_to_exit(self.hosts.argv(i, command), timeout_s, env=self.env(i, extra_env))
 
     def stop(self, names=None):
-        """Stop the processes (all, or names): SIGINT to each group, SIGKILL after a while.
+        """Stop the processes (all, or names): SIGINT to each session, SIGKILL after a while.
 
         Returns the names of those that had not ended STOP_WAIT_S after SIGINT (hung).
         """
         procs = [(n, p) for n, p in self.procs.items() if names is None or n in names]
         for _name, proc in procs:
-            _signal_group(proc, signal.SIGINT)
+            proc.interrupt()  # all at once: roslaunch takes seconds to stop its nodes
         deadline = time.monotonic() + STOP_WAIT_S
         hung = []
         for name, proc in procs:
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                proc.wait(timeout=max(0.1, deadline - time.monotonic()))
-            if proc.poll() is None:
+            if proc.stop(max(0.1, deadline - time.monotonic())) is None:  # it was killed
                 hung.append(name)
-            _signal_group(proc, signal.SIGKILL)  # also whatever the group left behind
-            proc.wait()
-            proc.log_file.close()
         for name, _proc in procs:
             del self.procs[name]
         return hung
 
     def close(self):
         self.stop()
-
-
-def _signal_group(proc, sig):
-    with contextlib.suppress(ProcessLookupError, PermissionError):
-        os.killpg(proc.pid, sig)
 
 
 class Probe:
@@ -109,16 +97,14 @@ class Probe:
         self._events = []
         self.name = name
         command = [sys.executable, '-m', 'multihost.team_probe_node', *args]
-        self.proc = team.start(name, i, command, stdout=subprocess.PIPE)
-        self._reader = threading.Thread(target=self._read, daemon=True)
-        self._reader.start()
+        self.proc = team.start(name, i, command, on_line=self._on_line)
 
-    def _read(self):
-        for line in self.proc.stdout:
-            try:
-                event = json.loads(line)
-            except ValueError:
-                continue
+    def _on_line(self, line):
+        try:
+            event = json.loads(line)
+        except ValueError:
+            return  # a log line of the node, not an event
+        if isinstance(event, dict):
             with self._lock:
                 self._events.append(event)
 

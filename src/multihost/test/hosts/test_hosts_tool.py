@@ -8,7 +8,7 @@ import sys
 import tempfile
 
 import pytest
-from course_common.testing import wait_for
+from course_common.testing import spawn, wait_for
 
 from multihost import hosts, netns
 
@@ -49,13 +49,14 @@ def test_up_status_down_leave_nothing(hosts3):
         missing = _ws_hosts('--prefix', prefix, 'exec', '3', 'true')
         assert missing.returncode == 1 and 'no host 3' in missing.stderr
         # A process left running in host 1 (as after `./ws hosts exec 1 roscore &`).
-        left = subprocess.Popen([*HOSTS, '--prefix', prefix, 'exec', '1', 'sleep', '300'])
+        left = spawn([*HOSTS, '--prefix', prefix, 'exec', '1', 'sleep', '300'])
         wait_for(lambda: subprocess.run(['ip', 'netns', 'pids', prefix + '-h1'],
                                         capture_output=True, text=True).stdout.strip(),
                  30.0, 'sleep to run in host 1')
     finally:
         gone = _ws_hosts('--prefix', prefix, 'down')
-    assert left is not None and left.wait(timeout=30) != 0  # down stopped it
+    assert left is not None and left.wait_exit(30) != 0  # down stopped it
+    left.stop()
     assert gone.returncode == 0, gone.stderr
     assert netns.ours(prefix, hosts.list_namespaces()) == []
     assert not os.path.exists(os.path.join(netns.NETNS_ETC, prefix + '-h1'))

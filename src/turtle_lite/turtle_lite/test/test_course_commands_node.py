@@ -13,16 +13,13 @@ import unittest
 
 import rospy
 import rostest
-from sim_support import (
+from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
+from course_common.testing.turtlesim import (
     CENTER,
-    EVENT_DEADLINE_S,
     POSE_TOL,
-    START_DEADLINE_S,
     ColorRecorder,
     PoseRecorder,
-    PtyTeleop,
-    Tool,
-    wait_for,
+    run_teleop,
 )
 from turtlesim.srv import TeleportAbsolute
 
@@ -53,7 +50,7 @@ def shell(command):
 class CourseCommandsTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.sim = Tool(["rosrun", "turtlesim", "turtlesim_node"])
+        cls.sim = spawn(["rosrun", "turtlesim", "turtlesim_node"])
         cls.turtle1 = PoseRecorder("/turtle1/pose", keep=1)
         wait_for(lambda: cls.turtle1.count() > 0, START_DEADLINE_S,
                  "turtle1's first pose from `rosrun turtlesim turtlesim_node`")
@@ -76,7 +73,7 @@ class CourseCommandsTest(unittest.TestCase):
         recorder.wait_latest(lambda p: p.x > start_x + MOVED_M, what)
 
     def start_teleop(self, *remaps):
-        teleop = PtyTeleop(argv=("rosrun", "turtlesim", "turtle_teleop_key", *remaps))
+        teleop = run_teleop(("rosrun", "turtlesim", "turtle_teleop_key", *remaps))
         self.addCleanup(teleop.close)
         wait_for(lambda: BANNER_LAST in teleop.output(), START_DEADLINE_S, "the teleop banner")
         return teleop
@@ -99,8 +96,8 @@ class CourseCommandsTest(unittest.TestCase):
 
     def test_rostopic_pub_moves_the_turtle(self):
         # As printed: without -1 or -r, rostopic publishes once, latches and keeps running.
-        pub = Tool(["bash", "-c", "rostopic pub /turtle1/cmd_vel geometry_msgs/Twist "
-                                  "'{linear: {x: 0.2}}'"], start_new_session=True)
+        pub = spawn(["bash", "-c", "rostopic pub /turtle1/cmd_vel geometry_msgs/Twist "
+                                  "'{linear: {x: 0.2}}'"])
         self.addCleanup(pub.stop)
         self.wait_moved(self.turtle1, CENTER, "turtle1 to move forward at 0.2 m/s")
         self.assertAlmostEqual(self.turtle1.latest().linear_velocity, 0.2, places=5)
@@ -126,7 +123,7 @@ class CourseCommandsTest(unittest.TestCase):
     def test_cpp_client_includes_turtlesim_headers(self):
         # test/pose_spawn_client.cpp of the turtlesim package: #include "turtlesim/Pose.h",
         # turtlesim::Spawn, built by catkin against the generated headers.
-        client = Tool(["rosrun", "turtlesim", "pose_spawn_client", "cpp_turtle"])
+        client = spawn(["rosrun", "turtlesim", "pose_spawn_client", "cpp_turtle"])
         self.addCleanup(client.stop)
         self.assertEqual(client.wait_exit(START_DEADLINE_S), 0, client.output())
         self.assertTrue(client.lines_with("spawned cpp_turtle"), client.output())
@@ -135,7 +132,7 @@ class CourseCommandsTest(unittest.TestCase):
         shell("rosservice call /kill cpp_turtle")
 
     def test_python_client_for_turtlesim_runs_unmodified(self):
-        client = Tool([os.path.join(CLIENTS_DIR, "turtlesim_client.py")])
+        client = spawn([os.path.join(CLIENTS_DIR, "turtlesim_client.py")])
         self.addCleanup(client.stop)
         self.assertEqual(client.wait_exit(START_DEADLINE_S), 0, client.output())
         self.assertEqual(client.lines_with("pose x:"), ["pose x: 2.00 y: 8.00 theta: 1.57"])

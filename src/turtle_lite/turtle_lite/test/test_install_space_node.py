@@ -14,7 +14,8 @@ import unittest
 import rosgraph
 import rospy
 import rostest
-from sim_support import EVENT_DEADLINE_S, START_DEADLINE_S, PoseRecorder, Tool, wait_for
+from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
+from course_common.testing.turtlesim import PoseRecorder
 
 INSTALL_DEADLINE_S = 300.0  # an incremental build plus the copy; generous on a loaded machine
 
@@ -71,7 +72,7 @@ class InstallSpaceTest(unittest.TestCase):
         self.assertIn("string path", self.run_installed("rossrv show turtle_lite/SaveImage"))
 
     def test_rosrun_turtlesim_node_from_the_install_space(self):
-        sim = Tool(self.in_install("exec rosrun turtlesim turtlesim_node __name:=installed_sim "
+        sim = spawn(self.in_install("exec rosrun turtlesim turtlesim_node __name:=installed_sim "
                                    "/turtle1:=/installed_turtle"))
         self.addCleanup(sim.stop)
         poses = PoseRecorder("/installed_turtle/pose", keep=1)

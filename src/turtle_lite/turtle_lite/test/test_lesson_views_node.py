@@ -7,12 +7,12 @@ import sys
 import tempfile
 import unittest
 
-import rosgraph
 import rospy
 import rostest
-from course_common.testing.views import TfPoseCheck, results_dir
-from PIL import Image
-from sim_support import POSE_TOL, START_DEADLINE_S, WORLD, wait_for
+from course_common.testing import START_DEADLINE_S, results_dir, spawn, wait_for
+from course_common.testing.master import subscribers_of
+from course_common.testing.turtlesim import POSE_TOL, WORLD
+from course_common.testing.views import TfPoseCheck
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
@@ -20,11 +20,6 @@ from visualization_msgs.msg import Marker, MarkerArray
 
 EVENT_DEADLINE_S = 20.0  # discovery (0.5 s), a pose, a marker tick (0.2 s) on a loaded machine
 TOOL_DEADLINE_S = 60.0  # tf_echo / view_frames.py: rosrun plus their own 5 s of listening
-
-
-def _subscribers(topic, node):
-    _pubs, subs, _srvs = rosgraph.Master('/test_lesson_views').getSystemState()
-    return any(t == topic and node in nodes for t, nodes in subs)
 
 
 
@@ -67,9 +62,9 @@ class LessonViewsTest(unittest.TestCase):
         wait_for(lambda: self.marker('name', 'robot2'), EVENT_DEADLINE_S,
                  "robot2's name marker")
         rospy.ServiceProxy('/kill', Kill)('robot2')
-        wait_for(lambda: not _subscribers('/robot2/pose', '/pose_to_tf'), EVENT_DEADLINE_S,
+        wait_for(lambda: '/pose_to_tf' not in subscribers_of('/robot2/pose'), EVENT_DEADLINE_S,
                  'pose_to_tf to drop /robot2/pose after the kill')
-        wait_for(lambda: not _subscribers('/robot2/pose', '/lesson_markers'), EVENT_DEADLINE_S,
+        wait_for(lambda: '/lesson_markers' not in subscribers_of('/robot2/pose'), EVENT_DEADLINE_S,
                  'lesson_markers to drop /robot2/pose after the kill')
         wait_for(lambda: self.markers is not None and not self.marker('name', 'robot2'),
                  EVENT_DEADLINE_S, "robot2's markers gone")
@@ -98,20 +93,10 @@ class LessonViewsTest(unittest.TestCase):
         self.assertEqual(trail.header.frame_id, 'world')
 
     def test_tf_echo_and_view_frames_show_the_turtles(self):
-        env = dict(os.environ)
         with tempfile.TemporaryDirectory() as tmp:
-            echo = subprocess.Popen(['rosrun', 'tf', 'tf_echo', 'world', 'sim2/turtle1'],
-                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                    universal_newlines=True, env=env)
-            try:
-                lines = []
-                wait_for(lambda: lines.append(echo.stdout.readline())
-                         or any('Translation' in line for line in lines),
-                         TOOL_DEADLINE_S, 'tf_echo printing a translation')
-            finally:
-                echo.terminate()
-                echo.wait(10)
-            self.assertIn('Translation: [', ''.join(lines))
+            with spawn(['rosrun', 'tf', 'tf_echo', 'world', 'sim2/turtle1']) as echo:
+                line = echo.wait_line('Translation', TOOL_DEADLINE_S)
+            self.assertIn('Translation: [', line)
             frames = subprocess.run(['rosrun', 'tf2_tools', 'view_frames.py'], cwd=tmp,
                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                     text=True, timeout=TOOL_DEADLINE_S)
@@ -139,9 +124,8 @@ class LessonViewsTest(unittest.TestCase):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'rviz',
                             'turtlesim.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
-            rviz.wait_subscribed(START_DEADLINE_S * 2)
-            shot = rviz.wait_lesson_drawn(robots=2, labels=2, timeout_s=START_DEADLINE_S * 2)
-            Image.fromarray(shot).save(os.path.join(results_dir(), 'turtlesim_rviz.png'))
+            rviz.capture(os.path.join(results_dir(), 'turtlesim_rviz.png'), robots=2, labels=2,
+                         timeout_s=START_DEADLINE_S * 2)
             self.assertEqual(rviz.missing_topics(), [])
             self.assertEqual(rviz.topics, ['/lesson_markers', '/tf', '/tf_static'])
             self.assertEqual(error_lines(rviz.log()), [], rviz.log())

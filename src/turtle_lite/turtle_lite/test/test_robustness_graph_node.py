@@ -5,21 +5,11 @@ import unittest
 
 import rospy
 import rostest
-from sim_support import (
-    DEFAULT_BG,
-    EVENT_DEADLINE_S,
-    START_DEADLINE_S,
-    TURTLE_SERVICES,
-    TURTLE_TOPICS,
-    PoseRecorder,
-    Recorder,
-    Tool,
-    graph_names,
-    kill_node,
-    published_topics,
-    services,
-    wait_for,
-)
+from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
+from course_common.testing.master import graph_names, kill_node, published_topics, services
+from course_common.testing.recorders import Recorder
+from course_common.testing.turtlesim import PoseRecorder
+from sim_support import DEFAULT_BG, TURTLE_SERVICES, TURTLE_TOPICS
 from turtlesim.msg import Color
 from turtlesim.srv import Kill, Spawn
 
@@ -87,8 +77,8 @@ class RobustnessGraphTest(unittest.TestCase):
     def test_ros_namespace_remap_bad_params_and_rosnode_kill(self):
         # A second simulator, run by the test so its output and exit code can be checked.
         # turtle1:=robot1 remaps the turtle's whole namespace (roscpp NodeHandle semantics).
-        sim = Tool(["rosrun", "turtle_lite", "turtlesim_node", "turtle1:=robot1",
-                    "_background_b:=blue", "_gui:=perhaps"], env_extra={"ROS_NAMESPACE": "ns2"})
+        sim = spawn(["rosrun", "turtle_lite", "turtlesim_node", "turtle1:=robot1",
+                    "_background_b:=blue", "_gui:=perhaps"], env={"ROS_NAMESPACE": "ns2"})
         self.addCleanup(sim.stop)
         wait_for(lambda: "/ns2/robot1/pose" in published_topics(), START_DEADLINE_S,
                  "/ns2/robot1/pose")

@@ -4,18 +4,18 @@
 import ctypes
 import ctypes.util
 import os
-import subprocess
 import tempfile
 import unittest
 
 import numpy as np
 import rospy
 import rostest
+from course_common.testing import START_DEADLINE_S, Xvfb, spawn, wait_for
 from PIL import ImageGrab
-from sim_support import DEFAULT_BG, START_DEADLINE_S, wait_for
+from sim_support import DEFAULT_BG
 from turtlesim.srv import TeleportAbsolute
 
-SCREEN = '800x600x24'
+SCREEN = (800, 600)
 
 
 class XWindows:
@@ -87,30 +87,19 @@ class SimGuiTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_sim_gui')
-        # -displayfd: Xvfb picks a free display number and writes it to us.
-        cls.xvfb = subprocess.Popen(['Xvfb', '-displayfd', '1', '-screen', '0', SCREEN,
-                                     '-nolisten', 'tcp'],
-                                    stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-        cls.display = ':' + cls.xvfb.stdout.readline().decode().strip()
-        env = dict(os.environ, DISPLAY=cls.display, ROS_NAMESPACE='gui')
-        cls.log = tempfile.TemporaryFile()  # noqa: SIM115 - closed in tearDownClass
-        cls.sim = subprocess.Popen(['rosrun', 'turtle_lite', 'turtlesim_node', '_gui:=true'],
-                                   env=env, stdout=cls.log, stderr=subprocess.STDOUT)
+        cls.xvfb = Xvfb(SCREEN)
+        cls.display = cls.xvfb.display
+        cls.sim = spawn(['rosrun', 'turtle_lite', 'turtlesim_node', '_gui:=true'],
+                        env={'DISPLAY': cls.display, 'ROS_NAMESPACE': 'gui'})
         rospy.wait_for_service('/gui/turtle1/teleport_absolute', START_DEADLINE_S)
 
     @classmethod
     def tearDownClass(cls):
-        for proc in (cls.sim, cls.xvfb):
-            proc.terminate()
-            try:
-                proc.wait(10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-        cls.log.close()
+        cls.sim.stop()
+        cls.xvfb.close()
 
     def output(self):
-        self.log.seek(0)
-        return self.log.read().decode(errors='replace')
+        return self.sim.output()
 
     def test_window_title_size_background_and_turtle(self):
         xwin = XWindows(self.display)

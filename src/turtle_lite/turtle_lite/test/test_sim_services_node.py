@@ -9,22 +9,12 @@ import threading
 import numpy as np
 import rospy
 import rostest
+from course_common.testing import wait_for
+from course_common.testing.master import graph_names, names_under
+from course_common.testing.turtlesim import CENTER, POSE_TOL, WORLD, PoseRecorder
 from PIL import Image
 from rosgraph_msgs.msg import Log
-from sim_support import (
-    CENTER,
-    DEFAULT_BG,
-    DEFAULT_PEN,
-    POSE_TOL,
-    WORLD,
-    PoseRecorder,
-    SimTestCase,
-    graph_names,
-    has_turtle_at,
-    names_under,
-    wait_connected,
-    wait_for,
-)
+from sim_support import DEFAULT_BG, DEFAULT_PEN, SimTestCase, has_turtle_at, wait_connected
 from turtle_lite.srv import SaveImage
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute
 

@@ -6,16 +6,9 @@ import unittest
 
 import rospy
 import rostest
-from sim_support import (
-    CENTER,
-    EVENT_DEADLINE_S,
-    START_DEADLINE_S,
-    PoseRecorder,
-    Tool,
-    published_topics,
-    subscribed_topics,
-    wait_for,
-)
+from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
+from course_common.testing.master import published_topics, subscribed_topics
+from course_common.testing.turtlesim import CENTER, PoseRecorder
 from turtlesim.srv import Spawn, TeleportAbsolute
 
 POSE_TOL = 1e-4  # float32 poses, printed goals with 6 decimals
@@ -37,7 +30,7 @@ class DrawSquareTest(unittest.TestCase):
         wait_for(lambda: "/turtle2/pose" in published_topics(), EVENT_DEADLINE_S,
                  "/turtle2/pose to be advertised")
 
-        tool = Tool(["rosrun", "turtle_lite", "draw_square"])
+        tool = spawn(["rosrun", "turtle_lite", "draw_square"])
         self.addCleanup(tool.stop)
         # The reset removed turtle2 and put turtle1 back at the centre, heading 0.
         wait_for(lambda: "/turtle2/pose" not in published_topics(), START_DEADLINE_S,
@@ -67,8 +60,8 @@ class DrawSquareTest(unittest.TestCase):
 
     def test_without_simulator_warns_and_keeps_running(self):
         # In a namespace with no simulator, reset is unavailable: a warning, not a crash.
-        tool = Tool(["rosrun", "turtle_lite", "draw_square", "__name:=square_alone"],
-                    env_extra={"ROS_NAMESPACE": "nosim"})
+        tool = spawn(["rosrun", "turtle_lite", "draw_square", "__name:=square_alone"],
+                    env={"ROS_NAMESPACE": "nosim"})
         self.addCleanup(tool.stop)
         warning = tool.wait_line("could not call /nosim/reset", START_DEADLINE_S)
         self.assertIn("WARN", warning)

@@ -2,23 +2,16 @@
 """turtle_teleop_key driven through a pseudo-terminal: keys in, Twists out, terminal restored."""
 
 import signal
-import subprocess
 import termios
 import unittest
 
 import rospy
 import rostest
+from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
+from course_common.testing.master import kill_node, publisher_has_connected
+from course_common.testing.recorders import Recorder
+from course_common.testing.turtlesim import run_teleop
 from geometry_msgs.msg import Twist
-from sim_support import (
-    EVENT_DEADLINE_S,
-    START_DEADLINE_S,
-    PtyTeleop,
-    Recorder,
-    Tool,
-    kill_node,
-    publisher_has_connected,
-    wait_for,
-)
 
 BANNER_LAST = "Use arrow keys to move the turtle. 'q' to quit."
 
@@ -30,7 +23,7 @@ class TeleopTest(unittest.TestCase):
         self.teleop = None
 
     def start_teleop(self, env_extra=None):
-        self.teleop = PtyTeleop(env_extra)
+        self.teleop = run_teleop(env=env_extra)
         self.addCleanup(self.teleop.close)
 
     def received(self):
@@ -44,7 +37,7 @@ class TeleopTest(unittest.TestCase):
                  "the teleop banner")
         wait_for(lambda: publisher_has_connected("/teleop_turtle", "/turtle1/cmd_vel"),
                  START_DEADLINE_S, "teleop's cmd_vel publisher to connect")
-        wait_for(lambda: not self.teleop.lflags() & termios.ICANON, EVENT_DEADLINE_S,
+        wait_for(lambda: not self.teleop.terminal_lflags() & termios.ICANON, EVENT_DEADLINE_S,
                  "teleop to switch the terminal to non-canonical mode")
 
     def test_keys_publish_one_twist_each_and_q_quits(self):
@@ -52,7 +45,7 @@ class TeleopTest(unittest.TestCase):
         out = self.teleop.output()
         for line in ("Reading from keyboard", "---------------------------", BANNER_LAST):
             self.assertIn(line, out)
-        self.assertFalse(self.teleop.lflags() & termios.ECHO, "teleop should disable echo")
+        self.assertFalse(self.teleop.terminal_lflags() & termios.ECHO, "teleop should disable echo")
 
         # Up arrow, a plain 'A' (turtlesim quirk), an ignored 'x' followed by the left arrow,
         # down arrow. One key at a time, like a typist: the publisher's queue holds 1, so a
@@ -71,7 +64,7 @@ class TeleopTest(unittest.TestCase):
             (0.0, 0.0, 0.0, 0.0, 0.0, 2.0),
             (-3.0, 0.0, 0.0, 0.0, 0.0, 0.0),
         ])
-        lflags = self.teleop.lflags()
+        lflags = self.teleop.terminal_lflags()
         self.assertTrue(lflags & termios.ICANON and lflags & termios.ECHO,
                         "the terminal should be restored after q")
 
@@ -83,7 +76,7 @@ class TeleopTest(unittest.TestCase):
         self.teleop.proc.send_signal(signal.SIGINT)
         code = self.teleop.proc.wait(timeout=EVENT_DEADLINE_S)
         self.assertEqual(code, 0)
-        lflags = self.teleop.lflags()
+        lflags = self.teleop.terminal_lflags()
         self.assertTrue(lflags & termios.ICANON and lflags & termios.ECHO,
                         "the terminal should be restored after SIGINT")
 
@@ -91,7 +84,7 @@ class TeleopTest(unittest.TestCase):
         self.wait_ready()
         kill_node("/teleop_turtle")
         self.assertEqual(self.teleop.proc.wait(timeout=EVENT_DEADLINE_S), 0)
-        lflags = self.teleop.lflags()
+        lflags = self.teleop.terminal_lflags()
         self.assertTrue(lflags & termios.ICANON and lflags & termios.ECHO,
                         "the terminal should be restored after rosnode kill")
 
@@ -113,7 +106,7 @@ class TeleopTest(unittest.TestCase):
         self.assertIn(code, (1, -signal.SIGHUP))
 
     def test_stdin_not_a_tty_fails_clearly(self):
-        tool = Tool(["rosrun", "turtle_lite", "turtle_teleop_key"], stdin=subprocess.DEVNULL)
+        tool = spawn(["rosrun", "turtle_lite", "turtle_teleop_key"])
         try:
             code = tool.wait_exit(START_DEADLINE_S)
             self.assertNotEqual(code, 0)

@@ -1,43 +1,97 @@
-"""Waiting with a named deadline, and pinning rospy internals: the tests' and tools' support.
+"""The tests' and benchmarks' one set of helpers.
 
-Used by the rostest nodes of every package, convoy's harness and demo, and bench/.
+Here: the deadlines, wait_for (from course_common.waiting), pin, results_dir, and the
+process helpers tests use (ChildProcess, spawn, Xvfb, free_port, cpu_ticks, rss_mb, from
+course_common.processes, .xvfb and .ports, where tools use them too). Beside it:
+recorders (topics and /rosout), master (queries of the graph, a private roscore), turtlesim
+(turtle recorders, the teleop on a terminal, the simulator's constants), views (tf checks).
+Production code imports course_common.waiting, .processes, .ports and .xvfb, never this.
 """
 import importlib.metadata
-import time
+import os
+import re
+import shutil
+import sys
+import tempfile
+import unittest
 
-import rospy
+from course_common.ports import free_port
+from course_common.processes import ChildProcess, cpu_ticks, rss_mb, spawn
+from course_common.waiting import POLL_S, WaitError, wait_for
+from course_common.xvfb import Xvfb
 
-POLL_S = 0.01  # s between checks: fine-grained next to the 16 ms tick, cheap on the CPU
+__all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess',
+           'ScratchDirTestCase', 'WaitError', 'Xvfb', 'cpu_ticks', 'free_port', 'pin',
+           'consecutive', 'info_texts', 'numbers_in', 'results_dir', 'rospy_version', 'rss_mb',
+           'spawn', 'wait_for']
+
+# Deadlines are generous: the tests run on a loaded 2-core machine, and a deadline only costs
+# time when something is wrong.
+START_DEADLINE_S = 30.0  # a node or tool process coming up (rosrun + Python start-up)
+EVENT_DEADLINE_S = 15.0  # something that should follow promptly (a message, a log line, an exit)
+GTEST_OUTPUT = '--gtest_output=xml:'
+#: rospy's INFO line on a terminal: "[INFO] [<wall time>]: <text>".
+INFO_LINE = re.compile(r'^\[INFO\] \[[\d.]+\]: (.*)$')
 
 
-class WaitError(AssertionError):
-    """wait_for gave up: its deadline passed, ROS shut down, or what it needs is gone.
+def results_dir(argv=None):
+    """Where a test keeps what it made for a person to look at (screenshots, pictures):
+    beside its results. rostest hands each test node --gtest_output=xml:<results file>;
+    elsewhere ROS_TEST_RESULTS_DIR, else the temp dir. The folder exists on return."""
+    for arg in sys.argv if argv is None else argv:
+        if arg.startswith(GTEST_OUTPUT):
+            path = os.path.dirname(arg[len(GTEST_OUTPUT):])
+            break
+    else:
+        path = os.environ.get('ROS_TEST_RESULTS_DIR') or tempfile.gettempdir()
+    os.makedirs(path, exist_ok=True)
+    return path
 
-    An AssertionError, so a unittest reports it as a failure of the test, not an error.
+
+def info_texts(lines):
+    """The texts of rospy's INFO lines among a process's screen lines, in order."""
+    return [m.group(1) for m in map(INFO_LINE.match, lines) if m]
+
+
+def numbers_in(texts, pattern, kind=int):
+    """The numbers (group 1 of pattern, as kind) in texts, which must all match pattern.
+
+    Raises AssertionError naming the first text that does not (a test's failure).
+    """
+    found = []
+    for text in texts:
+        match = pattern.match(text)
+        if not match:
+            raise AssertionError('unexpected text %r (expected %s)' % (text, pattern.pattern))
+        found.append(kind(match.group(1)))
+    return found
+
+
+def consecutive(values):
+    """True for a non-empty run of consecutive integers (n, n+1, n+2, ...)."""
+    return bool(values) and list(values) == list(range(values[0], values[0] + len(values)))
+
+
+class ScratchDirTestCase(unittest.TestCase):
+    """A TestCase with a scratch folder for the whole class (path(name) in it), removed after.
+
+    TMP_PREFIX names the folder, so a folder left by a killed run says whose it was.
     """
 
+    TMP_PREFIX = 'course_test_'
 
-def wait_for(predicate, timeout_s, what, poll_s=POLL_S, alive=None):
-    """Poll predicate() until it returns a true value, and return that value.
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.tmp = tempfile.mkdtemp(prefix=cls.TMP_PREFIX)
 
-    The one wait-with-deadline of the workspace: rostest nodes, convoy's harness and demo,
-    and the benchmarks use it. Raises WaitError naming `what` when timeout_s passes first,
-    when ROS shuts down while waiting (the master or this node is gone: waiting longer
-    cannot help), or, if `alive` is given, as soon as alive() returns a false value (the
-    process being waited on has exited).
-    """
-    deadline = time.monotonic() + timeout_s
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if alive is not None and not alive():
-            raise WaitError('gave up waiting for %s: the process it needs has exited' % what)
-        if time.monotonic() > deadline:
-            raise WaitError('timed out after %.1f s waiting for %s' % (timeout_s, what))
-        if rospy.is_shutdown():
-            raise WaitError('ROS shut down while waiting for %s' % what)
-        time.sleep(poll_s)
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+        super().tearDownClass()
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
 
 
 def rospy_version():

@@ -1,13 +1,10 @@
 """Test support for the tf and rviz views (rostest nodes of every package).
 
 TfPoseCheck compares tf's newest world -> <frame> transform with the newest pose on the
-turtle's pose topic; results_dir() is where a test keeps its screenshots.
+turtle's pose topic.
 """
 
 import math
-import os
-import sys
-import tempfile
 import threading
 
 import rospy
@@ -18,14 +15,6 @@ from course_common.testing import wait_for
 
 POSITION_TOL_M = 1e-4  # float32 poses through float64 transforms: far below a pose's change
 YAW_TOL_RAD = 1e-4
-
-
-def results_dir():
-    """Where rostest writes this test's XML (its --gtest_output argument): screenshots go there."""
-    for arg in sys.argv:
-        if arg.startswith('--gtest_output=xml:'):
-            return os.path.dirname(arg[len('--gtest_output=xml:'):])
-    return os.environ.get('ROS_TEST_RESULTS_DIR', tempfile.gettempdir())
 
 
 def yaw_of(q):

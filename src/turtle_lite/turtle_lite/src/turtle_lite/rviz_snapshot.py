@@ -10,13 +10,13 @@ and the lesson's pose_to_tf and lesson_markers.
 
 import argparse
 import os
-import subprocess
 import sys
-import tempfile
 
 import numpy as np
 import rosgraph
-from course_common.testing import wait_for
+from course_common.processes import ChildProcess
+from course_common.waiting import wait_for
+from course_common.xvfb import Xvfb
 from PIL import Image, ImageGrab
 
 from turtle_lite.rviz_config import display_topics
@@ -38,16 +38,16 @@ class RvizOnXvfb:
             self.topics = display_topics(f.read())
         self.config_path = config_path
         self.node_name = '/' + node_name.lstrip('/')
-        self._log = tempfile.TemporaryFile()  # noqa: SIM115 - closed in close()
-        # -displayfd: Xvfb picks a free display number and writes it to us.
-        self._xvfb = subprocess.Popen(
-            ['Xvfb', '-displayfd', '1', '-screen', '0', '%dx%dx24' % SCREEN, '-nolisten', 'tcp'],
-            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-        self.display = ':' + self._xvfb.stdout.readline().decode().strip()
-        env = dict(os.environ, DISPLAY=self.display, LIBGL_ALWAYS_SOFTWARE='1')
-        self._rviz = subprocess.Popen(
-            ['rviz', '-d', config_path, '__name:=' + node_name.lstrip('/')],
-            env=env, stdout=self._log, stderr=subprocess.STDOUT)
+        self._xvfb = Xvfb(SCREEN)
+        self.display = self._xvfb.display
+        self._rviz = ChildProcess(['rviz', '-d', config_path, '__name:=' + node_name.lstrip('/')],
+                                  env={'DISPLAY': self.display, 'LIBGL_ALWAYS_SOFTWARE': '1'},
+                                  stop_timeout_s=10.0)
+        try:
+            self._rviz.start()
+        except OSError:
+            self._xvfb.close()
+            raise
 
     def __enter__(self):
         return self
@@ -56,22 +56,14 @@ class RvizOnXvfb:
         self.close()
 
     def close(self):
-        for proc in (self._rviz, self._xvfb):
-            if proc.poll() is None:
-                proc.terminate()
-                try:
-                    proc.wait(10)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-                    proc.wait()
-        self._log.close()
+        self._rviz.stop()
+        self._xvfb.close()
 
     def log(self):
-        self._log.seek(0)
-        return self._log.read().decode(errors='replace')
+        return self._rviz.output()
 
     def running(self):
-        return self._rviz.poll() is None
+        return self._rviz.alive()
 
     def subscriptions(self):
         """The topics rviz's node subscribes to, as the master reports them."""
@@ -105,13 +97,19 @@ class RvizOnXvfb:
         return wait_for(lambda: self._alive_and(drawn), timeout_s,
                         'rviz drawing the arena, %d robot(s) and %d label(s)' % (robots, labels))[0]
 
+    def capture(self, out_path, robots, labels, timeout_s=START_DEADLINE_S):
+        """Waits until rviz is subscribed and shows the lesson (each wait up to timeout_s),
+        saves the screen to out_path (PNG) and returns it as an array."""
+        self.wait_subscribed(timeout_s)
+        shot = self.wait_lesson_drawn(robots, labels, timeout_s)
+        Image.fromarray(shot).save(out_path)
+        return shot
+
 
 def snapshot(config_path, out_path, robots, labels, timeout_s=START_DEADLINE_S):
     """Saves a PNG of rviz showing config_path on the running lesson; returns the rviz log."""
     with RvizOnXvfb(config_path) as rviz:
-        rviz.wait_subscribed(timeout_s)
-        shot = rviz.wait_lesson_drawn(robots, labels, timeout_s)
-        Image.fromarray(shot).save(out_path)
+        rviz.capture(out_path, robots, labels, timeout_s)
         return rviz.log()
 
 

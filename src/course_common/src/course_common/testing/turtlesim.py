@@ -1,0 +1,38 @@
+"""Test helpers for anything that drives a turtlesim (turtle_lite's tests and the lessons').
+
+The simulator's constants as a test checks them, recorders of a turtle's pose and colour
+sensor, and turtle_teleop_key on a terminal of its own.
+"""
+from turtlesim.msg import Color, Pose
+
+from course_common.processes import ChildProcess
+from course_common.testing.recorders import Recorder
+
+#: float32 pose fields compared to this tolerance.
+POSE_TOL = 1e-5
+CENTER = 5.5444446  # turtle1's start, float32
+WORLD = 11.088889  # the arena's side (m): 500 px at 45 px/m, less one pixel
+TELEOP_ARGV = ('rosrun', 'turtle_lite', 'turtle_teleop_key')
+
+
+class PoseRecorder(Recorder):
+    def __init__(self, topic='/turtle1/pose', keep=None):
+        super().__init__(topic, Pose, keep)
+
+    def wait_at_rest(self):
+        return self.wait(lambda p: p.linear_velocity == 0 and p.angular_velocity == 0,
+                         '%s at rest' % self.topic)
+
+
+class ColorRecorder(Recorder):
+    def __init__(self, topic='/turtle1/color_sensor'):
+        super().__init__(topic, Color)
+
+    def wait_rgb(self, rgb, what):
+        return self.wait(lambda c: (c.r, c.g, c.b) == tuple(rgb), what)
+
+
+def run_teleop(argv=TELEOP_ARGV, env=None):
+    """turtle_teleop_key (or argv) started on a pseudo-terminal of its own: a ChildProcess
+    whose send() types keys and terminal_lflags() shows the terminal's mode."""
+    return ChildProcess(argv, env=env, terminal=True).start()

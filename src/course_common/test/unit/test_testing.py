@@ -1,0 +1,115 @@
+"""Unit tests of course_common.testing's pure helpers: results_dir, number checks, INFO lines,
+ScratchDirTestCase, free_port, Xvfb's display number (and one real Xvfb, when installed)."""
+import os
+import re
+import shutil
+import socket
+import unittest
+
+import pytest
+from course_common.ports import free_port
+from course_common.testing import (
+    ScratchDirTestCase,
+    consecutive,
+    info_texts,
+    numbers_in,
+    results_dir,
+)
+from course_common.xvfb import Xvfb, display_number
+
+COUNT = re.compile(r'^hello world (\d+)$')
+TIME = re.compile(r'^hello world (\d+\.\d+)$')
+
+
+def test_results_dir_is_beside_rostests_xml(tmp_path):
+    xml = tmp_path / 'deep' / 'TEST-x.xml'
+    argv = ['test_node', '--gtest_output=xml:%s' % xml, '__name:=x']
+    assert results_dir(argv) == str(tmp_path / 'deep')
+    assert (tmp_path / 'deep').is_dir()  # made for the caller
+
+
+def test_results_dir_outside_rostest(tmp_path, monkeypatch):
+    monkeypatch.setenv('ROS_TEST_RESULTS_DIR', str(tmp_path / 'results'))
+    assert results_dir(['pytest']) == str(tmp_path / 'results')
+    monkeypatch.delenv('ROS_TEST_RESULTS_DIR')
+    assert os.path.isdir(results_dir(['pytest']))  # the temp dir
+
+
+@pytest.mark.parametrize('texts, pattern, kind, numbers', [
+    ([], COUNT, int, []),
+    (['hello world 0', 'hello world 12'], COUNT, int, [0, 12]),
+    (['hello world 1.5', 'hello world 1700000000.25'], TIME, float, [1.5, 1700000000.25]),
+])
+def test_numbers_in(texts, pattern, kind, numbers):
+    assert numbers_in(texts, pattern, kind) == pytest.approx(numbers, abs=1e-9)
+
+
+@pytest.mark.parametrize('texts', [['hello world 1', 'hello there'], ['hello world x']])
+def test_numbers_in_names_the_text_that_does_not_match(texts):
+    with pytest.raises(AssertionError, match=r"unexpected text 'hello (there|world x)'"):
+        numbers_in(texts, COUNT)
+
+
+@pytest.mark.parametrize('values, expected', [
+    ([], False),
+    ([7], True),
+    ([3, 4, 5], True),
+    ([0, 2], False),
+    ([2, 1], False),
+    ([1, 1], False),
+])
+def test_consecutive(values, expected):
+    assert consecutive(values) is expected
+
+
+def test_info_texts_keeps_rospys_info_lines_only():
+    lines = ['[INFO] [1700000000.123456]: hello world 0',
+             '[WARN] [1700000000.2]: careful',
+             'plain output',
+             '[INFO] [1700000000.3]: ',
+             '[INFO] [1700000000.4]: /listener_1_2I heard hello']
+    assert info_texts(lines) == ['hello world 0', '', '/listener_1_2I heard hello']
+
+
+class _Scratch(ScratchDirTestCase):
+    TMP_PREFIX = 'scratch_unit_'
+
+    def test_path_is_in_the_folder(self):
+        self.assertEqual(os.path.dirname(self.path('a.txt')), self.tmp)
+
+
+def test_scratch_dir_made_and_removed():
+    result = unittest.TestResult()
+    suite = unittest.defaultTestLoader.loadTestsFromTestCase(_Scratch)
+    suite.run(result)
+    assert result.wasSuccessful(), result.failures + result.errors
+    assert os.path.basename(_Scratch.tmp).startswith('scratch_unit_')
+    assert not os.path.exists(_Scratch.tmp)
+
+
+def test_free_port_can_be_bound():
+    port = free_port()
+    assert 1024 <= port <= 65535
+    with socket.socket() as sock:
+        sock.bind(('localhost', port))  # free right now: nothing else took it
+
+
+@pytest.mark.parametrize('lines, number', [
+    ([], None),
+    (['_XSERVTransmkdir: Owner of /tmp/.X11-unix should be set to root'], None),
+    (['warning', '42'], '42'),
+    (['  7 '], '7'),
+    (['0', '1'], '0'),
+])
+def test_display_number(lines, number):
+    assert display_number(lines) == number
+
+
+@pytest.mark.skipif(shutil.which('Xvfb') is None, reason='Xvfb is not installed')
+def test_xvfb_starts_on_a_free_display_and_stops():
+    with Xvfb((320, 240)) as first, Xvfb((320, 240)) as second:
+        assert re.fullmatch(r':\d+', first.display)
+        assert first.display != second.display  # -displayfd: never one in use
+        assert first.env()['DISPLAY'] == first.display
+        assert first.alive()
+    assert not first.alive() and not second.alive()
