@@ -5,13 +5,14 @@ sensor, and turtle_teleop_key on a terminal of its own.
 """
 from turtlesim.msg import Color, Pose
 
+from course_common.arena import SPAWN_M, WORLD_SIZE_M
 from course_common.processes import ChildProcess
 from course_common.testing.recorders import Recorder
 
 #: float32 pose fields compared to this tolerance.
 POSE_TOL = 1e-5
-CENTER = 5.5444446  # turtle1's start, float32
-WORLD = 11.088889  # the arena's side (m): 500 px at 45 px/m, less one pixel
+CENTER = SPAWN_M  # turtle1's start, float32 (course_common.arena)
+WORLD = WORLD_SIZE_M  # the arena's side (m): 500 px at 45 px/m, less one pixel
 TELEOP_ARGV = ('rosrun', 'turtle_lite', 'turtle_teleop_key')
 
 
