@@ -18,3 +18,17 @@ def init_node(name, **kwargs):
     except (OSError, rospy.ROSException) as err:
         rospy.logwarn('Could not read %s from the master (%s): each log line will ask it again',
                       '/rosout_disable_topics_generation', err)
+
+
+def loop_at_rate(rate_hz, cycle):
+    """Call cycle() at rate_hz until ROS shuts down: the slides' ``while (ros::ok())`` loop.
+
+    Ctrl-C during the sleep (rospy's ROSInterruptException) is a normal exit, not an error.
+    """
+    rate = rospy.Rate(rate_hz)
+    while not rospy.is_shutdown():
+        cycle()
+        try:
+            rate.sleep()
+        except rospy.ROSInterruptException:
+            return

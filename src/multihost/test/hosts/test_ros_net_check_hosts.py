@@ -2,6 +2,7 @@
 
 Master on host 1; a publisher (rostopic pub) on host 2, configured well or badly.
 """
+import pytest
 from course_common.testing import wait_for
 from multihost.lessons import start_master
 
@@ -47,20 +48,20 @@ def test_unresolvable_hostname_listed_but_silent_then_explained(team):
     assert 'fix: export ROS_IP=10.77.0.2' in out
 
 
-def test_wrong_ros_ip(team):
+@pytest.mark.parametrize('env, failure, fix', [
+    ({'ROS_IP': '10.77.0.3'},
+     'FAIL ROS_IP=10.77.0.3 is not an address of this host (its addresses: 10.77.0.2',
+     'fix: export ROS_IP=10.77.0.2'),
+    ({'ROS_HOSTNAME': 'localhost'},
+     'FAIL ROS_HOSTNAME=localhost is a loopback name',
+     'fix: unset ROS_HOSTNAME; export ROS_IP=10.77.0.2'),
+], ids=['wrong_ros_ip', 'localhost_on_a_team'])
+def test_robot_host_misconfigured(team, env, failure, fix):
     start_master(team, ['robot1'])
-    status, out = team.run(2, CHECK, {'ROS_IP': '10.77.0.3'})
+    status, out = team.run(2, CHECK, env)
     assert status == 1, out
-    assert 'FAIL ROS_IP=10.77.0.3 is not an address of this host (its addresses: 10.77.0.2' in out
-    assert 'fix: export ROS_IP=10.77.0.2' in out
-
-
-def test_localhost_on_a_team(team):
-    start_master(team, ['robot1'])
-    status, out = team.run(2, CHECK, {'ROS_HOSTNAME': 'localhost'})
-    assert status == 1, out
-    assert 'FAIL ROS_HOSTNAME=localhost is a loopback name' in out
-    assert 'fix: unset ROS_HOSTNAME; export ROS_IP=10.77.0.2' in out
+    assert failure in out
+    assert fix in out
 
 
 def test_unreachable_master(team, hosts3):

@@ -1,6 +1,6 @@
 """The basics deck's first node (hello): logs "hello world <count>" at 10 Hz."""
 import rospy
-from course_common.startup import init_node
+from course_common.startup import init_node, loop_at_rate
 
 RATE_HZ = 10  # the slide's ros::Rate loop_rate(10)
 # The slide's code streams "hello world" << count, which would print "hello world0"; the
@@ -15,22 +15,16 @@ class HelloNode:
     Services: none. Parameters: none.
     """
 
-    def __init__(self, rate_hz=RATE_HZ):
-        self._rate = rospy.Rate(rate_hz)
+    def __init__(self):
         self.count = 0
 
-    def spin(self):
-        """Loops until ROS shuts down (Ctrl-C), like the slide's while (ros::ok())."""
-        while not rospy.is_shutdown():
-            rospy.loginfo(LINE, self.count)
-            try:
-                self._rate.sleep()
-            except rospy.ROSInterruptException:
-                return  # Ctrl-C during the sleep: a normal exit
-            self.count += 1
+    def cycle(self):
+        """One turn of the slide's while (ros::ok()) loop."""
+        rospy.loginfo(LINE, self.count)
+        self.count += 1
 
 
 def main():
     """Entry point of hello."""
     init_node('hello')
-    HelloNode().spin()
+    loop_at_rate(RATE_HZ, HelloNode().cycle)
