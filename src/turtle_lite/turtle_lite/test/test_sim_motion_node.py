@@ -142,7 +142,7 @@ class SimMotionTest(SimTestCase):
         self.absolute(0.1, 3.0, 0.0)
         self.pose.wait(lambda p: abs(p.x - 0.1) < POSE_TOL, 'teleport near the left wall')
         before = len(self.wall_lines())
-        deadline = time.monotonic() + 0.5
+        deadline = time.monotonic() + 0.5  # half a second of commands: the drive, not a wait
         while time.monotonic() < deadline:
             self.cmd.publish(twist(-1.0))
             time.sleep(0.05)
