@@ -22,7 +22,8 @@ usage: ./ws COMMAND [ARGS]
   demo [ARGS]        deps, build, then the main demo (the convoy with its autopilot leader)
   test               deps, build, lint, unit tests, integration tests, one summary line
   deps               install the missing Debian packages of tools/debian-packages.txt
-  build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install)
+  build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
+                     runs every unit test and rostest the catkin way, see src/course_pytest)
   lint               catkin_lint, unit tests registered with catkin, ruff, hadolint, actionlint
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
   integration [F..]  rostest every test/*.test of every package (or just the files F)
