@@ -167,9 +167,12 @@ class TestChat(unittest.TestCase):
     def test_listener_logs_what_it_hears(self):
         self.assertEqual(publishers_of('/chatter'), {'/talker'})
         self.assertIn('/listener', subscribers_of('/chatter'))
-        wait_for(lambda: len(self.rec.logs('/listener')) >= MESSAGES_WANTED, START_DEADLINE_S,
-                 '%d "I heard" lines of /listener on /rosout' % MESSAGES_WANTED)
-        heard = counts(self.rec.logs('/listener'), HEARD)
+        # The listener's lines from here on: /talker is alone on /chatter (setUp), so none is
+        # about a message of another test's talker (those exited before they unregistered).
+        start = len(self.rec.logs('/listener'))
+        wait_for(lambda: len(self.rec.logs('/listener')) >= start + MESSAGES_WANTED,
+                 START_DEADLINE_S, '%d "I heard" lines of /listener on /rosout' % MESSAGES_WANTED)
+        heard = counts(self.rec.logs('/listener')[start:], HEARD)
         self.assertTrue(consecutive(heard), heard)
         talked = counts(self.rec.logs('/talker'), TEXT)
         self.assertLessEqual(set(heard), set(range(talked[-1] + 1)), 'heard a count never sent')
