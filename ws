@@ -22,8 +22,9 @@ usage: ./ws COMMAND [ARGS]
   demo [ARGS]        deps, build, then the main demo (the convoy with its autopilot leader)
   test               deps, build, lint, unit tests, integration tests, one summary line
   deps               install the missing Debian packages of tools/debian-packages.txt
-  build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install)
-  lint               catkin_lint, ruff, hadolint, actionlint
+  build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
+                     runs every unit test and rostest the catkin way, see src/course_pytest)
+  lint               catkin_lint, unit tests registered with catkin, ruff, hadolint, actionlint
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
   integration [F..]  rostest every test/*.test of every package (or just the files F)
   multihost [ARGS]   the multi-host tests (test/hosts/, pytest; root and ip netns, else skipped)
@@ -83,11 +84,25 @@ lint_venv() {
   fi
 }
 
+# Every package's test/unit runs under `catkin_make run_tests` too (src/course_pytest).
+check_unit_registered() {
+  local d failed=0
+  for d in $(test_dirs unit); do
+    grep -q '^ *course_add_pytests(test/unit)' "${d%/test/unit}/CMakeLists.txt" || {
+      echo "${d%/test/unit}/CMakeLists.txt: add course_add_pytests(test/unit) to its testing" \
+        "block (catkin_make run_tests would not run $d)" >&2
+      failed=1
+    }
+  done
+  return $failed
+}
+
 cmd_lint() {
   lint_venv
   source_devel
   local failed=0
   echo "lint: catkin_lint"; catkin_lint --strict -W2 --quiet src || failed=1
+  echo "lint: unit tests registered"; check_unit_registered || failed=1
   echo "lint: ruff"; "$LINT_VENV/bin/ruff" check --quiet . || failed=1
   echo "lint: hadolint"; "$LINT_VENV/bin/hadolint" docker/Dockerfile || failed=1
   echo "lint: actionlint"; "$LINT_VENV/bin/actionlint" .github/workflows/*.yml || failed=1

@@ -22,7 +22,11 @@ CONVOY_NODE_ARGS = ['_leader_pose:=/robot1/pose', '_follower_pose:=/robot2/pose'
 
 
 class TestConvoyLaunch(unittest.TestCase):
-    """The course file as students run it, leader left alone (nobody at the keyboard)."""
+    """The course file as students run it, leader left alone (nobody at the keyboard).
+
+    The tests run in any order: each waits for the state it starts from (the followers stopped
+    near their leaders, say) rather than relying on an earlier test to leave it.
+    """
 
     @classmethod
     def setUpClass(cls):
@@ -52,17 +56,20 @@ class TestConvoyLaunch(unittest.TestCase):
         self.assertLess(distance(before, self.watch.pose(robot)), 0.01,
                         'robot%d moved while it should stand still' % robot)
 
-    def test_1_course_topics_no_turtle1(self):
-        topics = set(topic_types())
-        for robot in (1, 2, 3):
-            for suffix in ('pose', 'cmd_vel'):
-                self.assertIn('/robot%d/%s' % (robot, suffix), topics)
-        self.assertEqual([t for t in topics if t.startswith('/turtle1')], [],
+    def test_course_topics_no_turtle1(self):
+        # The launch's nodes register in any order, and a loaded machine can take seconds:
+        # wait for the whole graph before checking what must not be in it.
+        wanted_topics = {'/robot%d/%s' % (robot, suffix)
+                         for robot in (1, 2, 3) for suffix in ('pose', 'cmd_vel')}
+        wanted_nodes = {'/turtlesim', '/convoy_node', '/convoy2_node'}
+        wait_for(lambda: wanted_topics <= set(topic_types()), STARTUP_TIMEOUT_S,
+                 'the course topics %s' % sorted(wanted_topics))
+        wait_for(lambda: wanted_nodes <= set(rosnode.get_node_names()), STARTUP_TIMEOUT_S,
+                 'the nodes %s' % sorted(wanted_nodes))
+        self.assertEqual([t for t in topic_types() if t.startswith('/turtle1')], [],
                          'the /turtle1 -> /robot1 remap must leave no /turtle1 topics')
-        nodes = set(rosnode.get_node_names())
-        self.assertTrue({'/turtlesim', '/convoy_node', '/convoy2_node'} <= nodes, nodes)
 
-    def test_2_followers_stop_inside_tolerance(self):
+    def test_followers_stop_inside_tolerance(self):
         self._wait_stopped_near(2, DRIVE_TIMEOUT_S)
         self._wait_stopped_near(3, DRIVE_TIMEOUT_S)
         for follower in (2, 3):
@@ -74,7 +81,7 @@ class TestConvoyLaunch(unittest.TestCase):
         self._assert_still(2)
         self._assert_still(3)
 
-    def test_3_kill_and_restart_resumes(self):
+    def test_kill_and_restart_resumes(self):
         self._wait_stopped_near(2, DRIVE_TIMEOUT_S)
         rosnode.kill_nodes(['/convoy_node'])
         wait_for(lambda: '/convoy_node' not in rosnode.get_node_names(), 20.0,
@@ -90,7 +97,7 @@ class TestConvoyLaunch(unittest.TestCase):
         self._wait_stopped_near(2, DRIVE_TIMEOUT_S)
         self.assertTrue(self.restarted.alive(), 'the restarted convoy_node exited')
 
-    def test_4_missing_or_bad_params_are_fatal(self):
+    def test_missing_or_bad_params_are_fatal(self):
         # (name, executable, args, words the fatal message must contain); all run at once.
         cases = [
             ('bad_missing', 'convoy_node', [],
@@ -124,7 +131,7 @@ class TestConvoyLaunch(unittest.TestCase):
                     self.assertIn(word, output)
                 self.assertNotIn('Traceback', output)
 
-    def test_5_waits_for_both_poses_and_ignores_non_finite(self):
+    def test_waits_for_both_poses_and_ignores_non_finite(self):
         # A second follower of robot2 whose leader is a topic this test publishes: no command
         # while the leader is unknown or NaN, commands once a finite leader pose arrives.
         commands = []

@@ -21,6 +21,8 @@ from course_common.rospy_internals import (
 )
 from course_common.testing import pin, wait_for
 from rosgraph_msgs.msg import Log
+from rospy.impl.tcpros_base import TCPROSTransport
+from rospy.impl.tcpros_pubsub import QueuedConnection
 from turtlesim.msg import Pose
 
 DEADLINE_S = 30.0  # connections between processes on a loaded 2-core machine
@@ -50,19 +52,38 @@ class Inbox:
 
 
 class RospyInternalsTest(unittest.TestCase):
+    """Each test has topics of its own and cleans up its publishers and subscribers: any order."""
 
-    def test_1_connections_one_per_subscriber_with_caller_ids(self):
+    def test_connections_plain_one_per_subscriber_with_caller_ids(self):
         pub = unqueued_publisher('/pinned/pose', Pose)
         wait_for(lambda: connection_ids(pub) == ECHO_NODES, DEADLINE_S,
                  'connections from %s (have %s)' % (sorted(ECHO_NODES), connection_ids(pub)))
         pin(len(pub.impl.connections) == 2, 'Publisher.impl.connections',
             'lists one connection per subscriber')
         pin(has_subscribers(pub), 'Publisher.impl.connections', 'is non-empty with subscribers')
-        pin(all(not type(c).__name__.startswith('Queued') for c in pub.impl.connections),
-            'Publisher(queue_size=None).impl.connections', 'holds the transports, unqueued')
+        # rospy reads impl.queue_size when a subscriber connects: unqueued_publisher's is None,
+        # so each connection is the transport itself (its socket is what write_frame writes to),
+        # not a QueuedConnection (test_a_queued_publisher_wraps_its_connections).
+        kinds = sorted(type(c).__name__ for c in pub.impl.connections)
+        pin(all(isinstance(c, TCPROSTransport) and not isinstance(c, QueuedConnection)
+                for c in pub.impl.connections), 'Publisher(queue_size=None).impl.connections',
+            'makes the connections of new subscribers plain TCPROSTransports (got %s)' % kinds)
         pub.unregister()
 
-    def test_2_frames_written_arrive_intact_with_the_caller_id(self):
+    def test_a_queued_publisher_wraps_its_connections(self):
+        # What unqueued_publisher saves, and why the check above can fail: with a queue_size,
+        # rospy wraps each connection in a QueuedConnection (a thread per subscriber).
+        pub = rospy.Publisher('/pinned/queued', Pose, queue_size=1)
+        inbox = Inbox('/pinned/queued', Pose)
+        wait_for(lambda: has_subscribers(pub), DEADLINE_S, 'this node subscribed to itself')
+        kinds = sorted(type(c).__name__ for c in pub.impl.connections)
+        pin(all(isinstance(c, QueuedConnection) for c in pub.impl.connections),
+            'rospy.impl.tcpros_pubsub.QueuedConnection',
+            'wraps the connections of a publisher with a queue_size (got %s)' % kinds)
+        inbox.sub.unregister()
+        pub.unregister()
+
+    def test_frames_written_arrive_intact_with_the_caller_id(self):
         pub = unqueued_publisher('/pinned/frames', Pose)
         self.assertFalse(has_subscribers(pub))
         inbox = Inbox('/pinned/frames', Pose)
@@ -85,7 +106,7 @@ class RospyInternalsTest(unittest.TestCase):
         pub.unregister()
         write_frame(pub, frame)  # unregistered: impl is None or closed, nothing is sent
 
-    def test_3_remove_connection_takes_a_subscriber_out(self):
+    def test_remove_connection_takes_a_subscriber_out(self):
         pub = unqueued_publisher('/pinned/remove', Pose)
         inbox = Inbox('/pinned/remove', Pose)
         wait_for(lambda: has_subscribers(pub), DEADLINE_S, 'this node subscribed to itself')
@@ -97,7 +118,7 @@ class RospyInternalsTest(unittest.TestCase):
         inbox.sub.unregister()
         pub.unregister()
 
-    def test_4_cache_seed_stops_rosout_topic_listing(self):
+    def test_cache_seed_stops_rosout_topic_listing(self):
         inbox = Inbox('/rosout', Log)
         wait_for(lambda: inbox.sub.get_num_connections() > 0, DEADLINE_S,
                  'this node subscribed to its own /rosout')
@@ -122,7 +143,7 @@ class RospyInternalsTest(unittest.TestCase):
                          'the seed must stay local, off the parameter server')
         inbox.sub.unregister()
 
-    def test_5_name_mappings_hold_the_argv_remaps(self):
+    def test_name_mappings_hold_the_argv_remaps(self):
         mappings = name_mappings()
         pin(mappings.get('pinned_from') == 'pinned_to', 'rospy.names.get_mappings()',
             'returns the remaps of the command line (got %r)' % mappings)

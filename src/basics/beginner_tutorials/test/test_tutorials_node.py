@@ -73,10 +73,11 @@ class TestTutorials(unittest.TestCase):
         # a connection under load logs one).
         cls.rosout = LogRecorder(accept=lambda m: m.level == Log.INFO, connect=False)
 
-    def tearDown(self):
-        # Each test stops its nodes: the next one starts with nobody on /chatter.
+    def setUp(self):
+        # Each test starts its own nodes, in any order: first, nobody on /chatter (a talker
+        # of an earlier test unregisters in the background after its exit).
         wait_for(lambda: not publishers_of('/chatter'), START_DEADLINE_S,
-                 'every talker to leave /chatter')
+                 'nobody on /chatter before the test (an earlier talker gone)')
 
     def _wait_chatter(self, proc, node, n):
         wait_for(lambda: running(proc, node) and len(self.chatter.data(node)) >= n,
@@ -86,7 +87,7 @@ class TestTutorials(unittest.TestCase):
         wait_for(lambda: running(proc, node) and len(self.rosout.lines(node=node)) >= n,
                  START_DEADLINE_S, '%d lines of %s on /rosout' % (n, node))
 
-    def test_1_talker_and_listener(self):
+    def test_talker_and_listener(self):
         talker, listener = rosrun('talker'), rosrun('listener')
         try:
             self._wait_chatter(talker, '/talker', MESSAGES_WANTED)
@@ -107,7 +108,7 @@ class TestTutorials(unittest.TestCase):
             self.assertTrue(consecutive(heard), heard)
             self.assertLessEqual(set(heard), set(said), 'heard a count never said')
 
-    def test_2_talker_py_and_listener_py(self):
+    def test_talker_py_and_listener_py(self):
         started = time.time()
         talker, listener = rosrun('talker.py'), rosrun('listener.py')
         try:
@@ -136,7 +137,7 @@ class TestTutorials(unittest.TestCase):
                 self.assertTrue(line.startswith(listener_name + 'I heard hello world '), line)
                 self.assertIn(line[len(listener_name + 'I heard '):], said, line)
 
-    def test_3_two_talker_py_side_by_side(self):
+    def test_two_talker_py_side_by_side(self):
         first = rosrun('talker.py')
         second = None
         try:

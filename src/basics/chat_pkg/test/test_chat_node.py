@@ -41,12 +41,18 @@ class TestChat(unittest.TestCase):
         cls.chatter = Recorder('/chatter', String, queue_size=1000)
         cls.rosout = LogRecorder(connect=False)
 
+    def setUp(self):
+        # Every test starts from chat.launch alone, in any order: the talkers an earlier test
+        # started unregister in the background after their exit.
+        wait_for(lambda: publishers_of('/chatter') == {'/talker'}, EXIT_DEADLINE_S,
+                 "chat.launch's /talker alone on /chatter before the test")
+
     def _wait_messages(self, node, n=MESSAGES_WANTED):
         wait_for(lambda: len(self.chatter.data(node)) >= n, START_DEADLINE_S,
                  '%d messages from %s on /chatter' % (n, node))
         return counts(self.chatter.data(node), TEXT)
 
-    def test_1_talker_counts_arrive_in_order(self):
+    def test_talker_counts_arrive_in_order(self):
         heard = self._wait_messages('/talker')
         self.assertTrue(consecutive(heard), heard)
         # The talker logs each text it publishes, with the same count.
@@ -54,17 +60,20 @@ class TestChat(unittest.TestCase):
         self.assertTrue(consecutive(logged), logged)
         self.assertTrue(set(heard) & set(logged), (heard, logged))
 
-    def test_2_listener_logs_what_it_hears(self):
+    def test_listener_logs_what_it_hears(self):
         self.assertEqual(publishers_of('/chatter'), {'/talker'})
         self.assertIn('/listener', subscribers_of('/chatter'))
-        wait_for(lambda: len(self.rosout.lines(node='/listener')) >= MESSAGES_WANTED,
+        # The listener's lines from here on: /talker is alone on /chatter (setUp), so none is
+        # about a message of another test's talker (those exited before they unregistered).
+        start = len(self.rosout.lines(node='/listener'))
+        wait_for(lambda: len(self.rosout.lines(node='/listener')) >= start + MESSAGES_WANTED,
                  START_DEADLINE_S, '%d "I heard" lines of /listener on /rosout' % MESSAGES_WANTED)
-        heard = counts(self.rosout.lines(node='/listener'), HEARD)
+        heard = counts(self.rosout.lines(node='/listener')[start:], HEARD)
         self.assertTrue(consecutive(heard), heard)
         talked = counts(self.rosout.lines(node='/talker'), TEXT)
         self.assertLessEqual(set(heard), set(range(talked[-1] + 1)), 'heard a count never sent')
 
-    def test_3_two_renamed_talkers_both_publish(self):
+    def test_two_renamed_talkers_both_publish(self):
         talkers = {name: rosrun_talker(name) for name in ('talker1', 'talker2')}
         try:
             for name in talkers:
@@ -80,7 +89,7 @@ class TestChat(unittest.TestCase):
         wait_for(lambda: publishers_of('/chatter') == {'/talker'}, EXIT_DEADLINE_S,
                  'talker1 and talker2 to leave /chatter')
 
-    def test_4_same_name_twice_the_older_exits(self):
+    def test_same_name_twice_the_older_exits(self):
         # The slide: "If the same node is launched twice, roscore directs the older node to exit".
         # rospy asks the master for /rosout_disable_topics_generation on every log line while
         # that parameter is unset, and each ask re-registers the node's URI: the older talker's

@@ -13,6 +13,7 @@ from course_common.testing import START_DEADLINE_S, spawn, wait_for
 from course_common.testing.master import publisher_has_connected
 from course_common.testing.recorders import LogRecorder, Recorder
 from geometry_msgs.msg import Pose2D, Twist
+from turtlesim.srv import TeleportAbsolute
 
 CONTROLLER = '/move_turtle_to_goal'
 GOAL_DEADLINE_S = 90.0  # the longest goal is ~10 m at 1.2 m/s (9 s): margin for a loaded machine
@@ -23,6 +24,8 @@ HEADING_TOL_RAD = 0.05
 TICK_SLACK_M = 0.01
 TICK_SLACK_RAD = 0.005
 SHORT_TURN_RAD = 2 * math.pi - 6.0  # theta 3.0 -> -3.0 the short way; the lab turns 6.0 rad
+START = (5.544445, 5.544445, 0.0)  # where the stand-in Pioneer spawns: the centre, heading +x
+START_TOL = 1e-4  # float32 pose fields against the teleport's float64 values
 
 
 class PoseWatch:
@@ -70,6 +73,7 @@ def _same(msg, goal):
 
 
 class TestGoToGoal(unittest.TestCase):
+    """Each test starts from where the robot is, or puts it where it needs it: any order."""
 
     @classmethod
     def setUpClass(cls):
@@ -85,6 +89,16 @@ class TestGoToGoal(unittest.TestCase):
                  and cls.bad_pose_pub.get_num_connections() > 0, START_DEADLINE_S,
                  'this test\'s goal and pose publishers connected to the controller')
         cls.logs = LogRecorder(CONTROLLER)
+        rospy.wait_for_service('/pioneer/teleport_absolute', START_DEADLINE_S)
+        cls.teleport = rospy.ServiceProxy('/pioneer/teleport_absolute', TeleportAbsolute)
+
+    def _start_at_centre(self):
+        """Puts the idle robot back where it spawns (every goal of a test is reached or
+        replaced before the test ends, so the controller sends nothing meanwhile)."""
+        self.teleport(*START)
+        wait_for(lambda: all(abs(a - b) < START_TOL for a, b in zip(
+            (self.pose.latest().x, self.pose.latest().y, self.pose.latest().theta), START,
+            strict=True)), START_DEADLINE_S, 'the robot back at its start %r' % (START,))
 
     def _drive_to(self, goal):
         """Sends the goal and waits until it is reported reached; returns the robot's pose."""
@@ -103,7 +117,9 @@ class TestGoToGoal(unittest.TestCase):
         lines = self.logs.lines()
         return lines.count('Reach position'), lines.count('Reach orientation')
 
-    def test_1_three_goals_in_a_row(self):
+    def test_three_goals_in_a_row(self):
+        self._start_at_centre()
+        lines_before = self._reach_lines()
         start = self.pose.latest()
         # Behind the robot, which starts at the centre heading +x.
         behind = (2.5, 5.0, 3.0)
@@ -117,10 +133,11 @@ class TestGoToGoal(unittest.TestCase):
         self.assertLess(self.pose.turned(), SHORT_TURN_RAD + 0.1,
                         'the robot turned the long way round')
         self._drive_to((8.0, 8.5, 1.0))
-        wait_for(lambda: self._reach_lines() == (3, 3), 15.0,
-                 'three "Reach position" and three "Reach orientation" lines')
+        wait_for(lambda: self._reach_lines() == (lines_before[0] + 3, lines_before[1] + 3),
+                 15.0, 'three more "Reach position" and "Reach orientation" lines')
 
-    def test_2_new_goal_while_driving_takes_over(self):
+    def test_new_goal_while_driving_takes_over(self):
+        self._start_at_centre()  # 6.3 m from the first goal: the robot turns, then drives
         far = (1.0, 1.0, 0.0)
         at = self.pose.latest()
         self.pose.reset(point=far[:2])
@@ -134,11 +151,14 @@ class TestGoToGoal(unittest.TestCase):
                          'the replaced goal was reported reached')
         self.logs.wait_line('replaces (1.000, 1.000, 0.000)')
 
-    def test_3_bad_goals_are_refused_and_nothing_is_sent(self):
+    def test_bad_goals_are_refused_and_nothing_is_sent(self):
         here = self.pose.latest()
         self.commands.clear()
+        seen = len([line for line in self.logs.lines() if 'refusing goal' in line])
+
         def refusals():
-            return [line for line in self.logs.lines() if 'refusing goal' in line]
+            """This test's refusal lines, oldest first."""
+            return [line for line in self.logs.lines() if 'refusing goal' in line][seen:]
         cases = (((math.nan, 5.0, 0.0), 'non-finite'), ((5.0, 5.0, math.inf), 'non-finite'),
                  ((20.0, 5.0, 0.0), 'outside the world'), ((5.0, -1.0, 0.0), 'outside the world'))
         for n, (goal, words) in enumerate(cases, start=1):
@@ -154,13 +174,13 @@ class TestGoToGoal(unittest.TestCase):
                   if (m.linear.x, m.angular.z) != (0.0, 0.0)]
         self.assertEqual(moving, [], 'a refused goal moved the robot')
 
-    def test_4_non_finite_pose_is_ignored(self):
+    def test_non_finite_pose_is_ignored(self):
         self.bad_pose_pub.publish(Pose2D(math.nan, 5.0, 0.0))
         self.logs.wait_line('ignoring pose (x=nan')
         # The controller still works from the simulator's poses.
         self._drive_to((6.0, 4.0, 0.5))
 
-    def test_5_bad_gains_are_fatal(self):
+    def test_bad_gains_are_fatal(self):
         for args, words in ((['_k_rho:=-1.0'], 'k_rho must be > 0'),
                             (['_k_alpha:=2.0'], 'k_alpha must be greater than k_rho'),
                             (['_rate_hz:=fast'], '~rate_hz = \'fast\'')):

@@ -19,9 +19,15 @@ SPEED_MPS = 0.5  # the slide's FORWARD_SPEED_MPS; exact in float32
 MOVED_M = 0.2  # a turtle that went this far along +x is moving forward
 POSE_LINE = re.compile(r'^x: \d+\.\d\d, y: \d+\.\d\d$')  # the slide's "x: %.2f, y: %.2f"
 TURTLE2_START = (2.0, 2.0, 0.0)
+TRACK_Y = 5.544445  # turtle1 spawns at the centre and drives along +x: y stays this
+# Where a test that watches turtle1 drive puts it: on its track, 10 m from the right wall.
+TURTLE1_START = (1.0, TRACK_Y, 0.0)
 
 
 class TestMoveTurtle(unittest.TestCase):
+    """The launch file's move_turtle drives turtle1 forward the whole time, into the right wall
+    after ~11 s: a test that needs it driving puts it back on its track first, so the tests run
+    in any order (and none moves turtle1 off its track, y = TRACK_Y)."""
 
     @classmethod
     def setUpClass(cls):
@@ -30,6 +36,14 @@ class TestMoveTurtle(unittest.TestCase):
                  'the launch file\'s /move_turtle node')
         cls.turtle1 = PoseRecorder('/turtle1/pose', keep=1)
         wait_for(cls.turtle1.latest, START_DEADLINE_S, 'the first /turtle1/pose')
+        cls.teleport1 = rospy.ServiceProxy('/turtle1/teleport_absolute', TeleportAbsolute)
+
+    def _turtle1_to_start(self):
+        self.teleport1(*TURTLE1_START)
+        # Any x this far left leaves metres to drive (4 s to get past it at 0.5 m/s).
+        self.turtle1.wait_latest(lambda p: p.x < TURTLE1_START[0] + 2.0
+                                 and abs(p.y - TRACK_Y) < 1e-4,
+                                 'turtle1 back near x = %.1f on its track' % TURTLE1_START[0])
 
     def _assert_drives_forward(self, poses, name):
         first = poses.wait_latest(lambda p: p.linear_velocity == SPEED_MPS,
@@ -39,16 +53,18 @@ class TestMoveTurtle(unittest.TestCase):
         self.assertAlmostEqual(last.y, first.y, delta=1e-4, msg='%s drifted sideways' % name)
         self.assertEqual(last.theta, first.theta, '%s turned' % name)
 
-    def test_1_launch_file_drives_turtle1_forward(self):
+    def test_launch_file_drives_turtle1_forward(self):
+        self._turtle1_to_start()
         self._assert_drives_forward(self.turtle1, 'turtle1')
 
-    def test_2_launch_file_logs_the_pose(self):
+    def test_launch_file_logs_the_pose(self):
+        self._turtle1_to_start()
         logs = LogRecorder('/move_turtle')
         line = logs.wait_line('x: ')
         self.assertRegex(line, POSE_LINE)
         self.assertTrue(line.endswith('y: 5.54'), line)  # turtle1 drives along y = 5.544
 
-    def test_3_turtle2_by_argv(self):
+    def test_turtle2_by_argv(self):
         rospy.ServiceProxy('/spawn', Spawn)(*TURTLE2_START, 'turtle2')
         poses = PoseRecorder('/turtle2/pose', keep=1)
         commands = Recorder('/turtle2/cmd_vel', Twist)
@@ -68,18 +84,21 @@ class TestMoveTurtle(unittest.TestCase):
         self.assertEqual((last.linear.x, last.angular.z), (0.0, 0.0))
         poses.wait_latest(lambda p: p.linear_velocity == 0.0, 'turtle2 at rest after Ctrl-C')
 
-    def test_4_wall_gets_the_simulator_warning_not_a_crash(self):
+    def test_wall_gets_the_simulator_warning_not_a_crash(self):
         logs = LogRecorder('/turtlesim_node')
-        rospy.ServiceProxy('/turtle1/teleport_absolute', TeleportAbsolute)(WORLD - 0.2, 5.5, 0.0)
+        self.teleport1(WORLD - 0.2, TRACK_Y, 0.0)
         logs.wait_line('Oh no! I hit the wall!')
         pinned = self.turtle1.wait_latest(
             lambda p: abs(p.x - WORLD) < 1e-4 and p.linear_velocity == SPEED_MPS,
             'turtle1 pinned at the right wall, still commanded')
-        self.assertAlmostEqual(pinned.y, 5.5, delta=1e-4)
+        self.assertAlmostEqual(pinned.y, TRACK_Y, delta=1e-4)
         self.assertIn('/move_turtle', rosnode.get_node_names())
         self.assertEqual(rosnode.rosnode_ping('/move_turtle', max_count=1), True)
 
-    def test_5_bad_argv_is_a_clear_error(self):
+    def test_bad_argv_is_a_clear_error(self):
+        # move_turtle2 of the turtle2 test unregisters in the background after its exit.
+        wait_for(lambda: [n for n in rosnode.get_node_names() if n.startswith('/move_turtle')]
+                 == ['/move_turtle'], START_DEADLINE_S, "the launch file's move_turtle alone")
         cases = ((['my turtle'], 'not a valid ROS name'),
                  (['turtle2', 'turtle3'], 'at most one robot name, got 2'),
                  (['~mine'], 'is private'))

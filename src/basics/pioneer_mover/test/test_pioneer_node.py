@@ -17,6 +17,7 @@ from turtlesim.srv import TeleportAbsolute
 INTERFACE = '/pioneer_interface'
 POSE_TOL = 1e-5  # float32 pose fields against float64 values
 BANNER_LAST = "Use arrow keys to move the turtle. 'q' to quit."  # turtle_teleop_key's last line
+CENTRE = (5.544445, 5.544445, 0.0)  # where the Pioneer spawns, heading +x: 5.5 m of room ahead
 
 
 def _twist(lx=0.0, ly=0.0, az=0.0):
@@ -31,6 +32,7 @@ def _values(twist):
 
 
 class TestPioneer(unittest.TestCase):
+    """Each test starts from where the Pioneer is, or puts it where it needs it: any order."""
 
     @classmethod
     def setUpClass(cls):
@@ -43,6 +45,8 @@ class TestPioneer(unittest.TestCase):
                  START_DEADLINE_S, 'pioneer_interface connected to the simulator')
         cls.logs = LogRecorder(INTERFACE)
         cls.teleop_cmd = rospy.Publisher('/turtle1/cmd_vel', Twist, queue_size=10)
+        rospy.wait_for_service('/pioneer/teleport_absolute', START_DEADLINE_S)
+        cls.teleport = rospy.ServiceProxy('/pioneer/teleport_absolute', TeleportAbsolute)
         wait_for(lambda: publisher_has_connected(rospy.get_name(), '/turtle1/cmd_vel', INTERFACE),
                  START_DEADLINE_S, 'this test connected to pioneer_interface')
         wait_for(lambda: publisher_has_connected(INTERFACE, '/pioneer/cmd_vel', rospy.get_name()),
@@ -54,23 +58,32 @@ class TestPioneer(unittest.TestCase):
         wait_for(lambda: self.commands.count() >= n, EVENT_DEADLINE_S, what)
         return self.commands.messages()[:n]
 
-    def test_1_graph_is_the_labs(self):
+    def test_graph_is_the_labs(self):
         types = topic_types()
         self.assertEqual(types['/pioneer/pose'], 'geometry_msgs/Pose2D')
         self.assertEqual(types['/pioneer/cmd_vel'], 'geometry_msgs/Twist')
         self.assertEqual(types['/pioneer/turtle_pose'], 'turtlesim/Pose')
         self.assertNotIn('/turtle1/pose', types, 'the turtle must live under /pioneer')
 
-    def test_2_pose2d_is_the_turtles_pose(self):
+    def test_pose2d_is_the_turtles_pose(self):
         target = (3.0, 4.0, 1.0)
-        rospy.ServiceProxy('/pioneer/teleport_absolute', TeleportAbsolute)(*target)
-        pose = self.pose2d.wait_latest(
-            lambda p: all(abs(a - b) < POSE_TOL
-                          for a, b in zip((p.x, p.y, p.theta), target, strict=True)),
-            'the Pose2D of the teleported turtle (3, 4, 1)')
+        pose = self._teleport(target)
         self.assertIsInstance(pose, Pose2D)
 
-    def test_3_command_divided_by_four(self):
+    def _teleport(self, target):
+        """Teleports the Pioneer once it is at rest; returns its first Pose2D there.
+
+        A moving turtle's first pose after a teleport already includes a tick of motion; the
+        simulator stops it 1 s after the last command of an earlier test."""
+        self.turtle.wait_latest(lambda p: p.linear_velocity == 0 and p.angular_velocity == 0,
+                                'the Pioneer at rest')
+        self.teleport(*target)
+        return self.pose2d.wait_latest(
+            lambda p: all(abs(a - b) < POSE_TOL
+                          for a, b in zip((p.x, p.y, p.theta), target, strict=True)),
+            'the Pose2D of the teleported turtle %r' % (target,))
+
+    def test_command_divided_by_four(self):
         self.commands.clear()
         self.teleop_cmd.publish(_twist(2.0, 0.4, -1.2))
         got = self._commands_after_clear(1, 'the command on /pioneer/cmd_vel')[0]
@@ -79,7 +92,7 @@ class TestPioneer(unittest.TestCase):
         self.turtle.wait_latest(lambda p: abs(p.angular_velocity + 0.3) < POSE_TOL,
                                 'the Pioneer turning at -0.3 rad/s')
 
-    def test_4_non_finite_command_never_reaches_the_robot(self):
+    def test_non_finite_command_never_reaches_the_robot(self):
         self.commands.clear()
         self.teleop_cmd.publish(_twist(math.nan, 0.0, 1.0))
         self.logs.wait_line('not forwarding')
@@ -88,7 +101,8 @@ class TestPioneer(unittest.TestCase):
         got = self._commands_after_clear(1, 'the good command after the NaN one')
         self.assertEqual([_values(m) for m in got], [(0.25, 0.0, 0.0, 0.0, 0.0, 0.0)])
 
-    def test_5_teleop_arrow_keys_drive_at_quarter_speed(self):
+    def test_teleop_arrow_keys_drive_at_quarter_speed(self):
+        self._teleport(CENTRE)  # room to drive 0.1 m ahead, wherever other tests left it
         teleop = run_teleop(('rosrun', 'turtlesim', 'turtle_teleop_key'))  # as the lab
         self.addCleanup(teleop.close)
         wait_for(lambda: BANNER_LAST in teleop.output(), START_DEADLINE_S, 'the teleop banner')

@@ -20,16 +20,20 @@ def is_chat(graph):
 
 
 class TestGraphChat(ScratchDirTestCase):
+    """Each test that reads the graph first waits for chat.launch's graph (a node another test
+    started leaves it in the background), so they run in any order."""
+
     TMP_PREFIX = 'rqt_graph_chat_'
 
-    def test_1_talker_chatter_listener(self):
+    def test_talker_chatter_listener(self):
         graph = wait_graph(self.path('chat.dot'), is_chat, 'talker -> /chatter -> listener')
         self.assertEqual(graph.topics, {'/chatter'})
         self.assertEqual(graph.others, set())
         with open(self.path('chat.dot')) as dot:
             self.assertNotIn('rosout', dot.read())
 
-    def test_2_rosout_hidden_unless_all(self):
+    def test_rosout_hidden_unless_all(self):
+        wait_graph(self.path('before.dot'), is_chat, 'the chat graph')
         # rostest starts no rosout node; roscore does: start one, as roscore would.
         rosout = spawn(['rosrun', 'rosout', 'rosout'])
         self.addCleanup(rosout.stop)
@@ -46,7 +50,7 @@ class TestGraphChat(ScratchDirTestCase):
             rosout.interrupt()
             rosout.wait_exit(EXIT_DEADLINE_S)
 
-    def test_3_png_and_svg(self):
+    def test_png_and_svg(self):
         wait_graph(self.path('wait.dot'), is_chat, 'the chat graph')
         code, out, err = rqt_graph('--out', self.path('chat.png'))
         self.assertEqual(code, 0, err)
@@ -64,7 +68,8 @@ class TestGraphChat(ScratchDirTestCase):
         for label in ('/talker', '/chatter', '/listener', 'std_msgs/String'):
             self.assertIn(label, text)
 
-    def test_4_nodes_come_and_go(self):
+    def test_nodes_come_and_go(self):
+        wait_graph(self.path('before.dot'), is_chat, 'the chat graph')
         talker2 = spawn(['rosrun', 'chat_pkg', 'talker', '__name:=talker2'])
         self.addCleanup(talker2.stop)
         try:
@@ -77,7 +82,7 @@ class TestGraphChat(ScratchDirTestCase):
             talker2.wait_exit(EXIT_DEADLINE_S)
         wait_graph(self.path('one.dot'), is_chat, 'talker2 gone from the graph')
 
-    def test_5_no_display_writes_png_in_cwd(self):
+    def test_no_display_writes_png_in_cwd(self):
         env = {k: v for k, v in os.environ.items() if k != 'DISPLAY'}
         cwd = tempfile.mkdtemp(dir=self.tmp)
         code, out, err = rqt_graph(env=env, cwd=cwd)
@@ -85,7 +90,7 @@ class TestGraphChat(ScratchDirTestCase):
         self.assertIn('no window (DISPLAY is not set): writing rqt_graph.png instead', out)
         self.assertGreater(png_size(os.path.join(cwd, 'rqt_graph.png'))[0], 0)
 
-    def test_6_clear_errors(self):
+    def test_clear_errors(self):
         # (name, args, environment change, exit code, words of the one-line error)
         cases = [
             ('no master', ['--out', self.path('x.png')],

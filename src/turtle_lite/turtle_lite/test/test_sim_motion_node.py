@@ -40,6 +40,19 @@ class SimMotionTest(SimTestCase):
     def wall_lines(self):
         return [line for line in self.logs.lines(Log.WARN) if line.startswith('Oh no!')]
 
+    def wait_logs_delivered(self):
+        """Waits until every line the simulator logged so far has reached this test.
+
+        /clear logs "Clearing turtlesim." through the same /rosout publisher and connection as
+        every earlier line, which arrive in order: once it is here, so are they.
+        """
+        def clearing():
+            return self.logs.lines(Log.INFO).count('Clearing turtlesim.')
+        seen = clearing()
+        self.clear()
+        wait_for(lambda: clearing() > seen, EVENT_DEADLINE_S,
+                 'the simulator\'s "Clearing turtlesim." line, after its earlier lines')
+
     def test_worked_trajectory_rate_and_heading_first(self):
         """Items 1 and 2: dt = 0.016 s, 62.5 Hz, theta_k = 0.008 k, x/y to 1e-6."""
         start = self.pose.wait_count(40, 'idle poses')
@@ -120,7 +133,7 @@ class SimMotionTest(SimTestCase):
         self.absolute(0.1, 3.0, 0.0)
         self.pose.wait(lambda p: abs(p.x - 0.1) < POSE_TOL, 'teleport near the left wall')
         before = len(self.wall_lines())
-        deadline = time.monotonic() + 0.5
+        deadline = time.monotonic() + 0.5  # half a second of commands: the drive, not a wait
         while time.monotonic() < deadline:
             self.cmd.publish(twist(-1.0))
             time.sleep(0.05)
@@ -135,9 +148,9 @@ class SimMotionTest(SimTestCase):
             self.assertLess(float(match.group(1)), 0.0)
             self.assertEqual(match.group(2), '%f' % (WORLD - 3.0), 'screen y = H - y')
         self.pose.wait_at_rest()
+        self.wait_logs_delivered()
 
         # Top edge of teleport_absolute: silent clamp. Bottom edge: WARN.
-        time.sleep(0.2)
         before = len(self.wall_lines())
         self.absolute(3.0, 20.0, 0.0)
         pose = self.pose.wait(lambda p: p.x == 3.0, 'teleport above the top')
