@@ -1,5 +1,6 @@
 """The lesson's move_robot: announce ready, wait for the monitor's GO, drive forward safely."""
 import threading
+import time
 from dataclasses import dataclass
 
 import rospy
@@ -17,6 +18,12 @@ from multi_sync.team import MONITOR_FRAME_ID, parse_robot_id
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
 SHARED_QUEUE = 100
+# Without a pose this long, the robot subscribes to its pose topic again. The master tells a
+# subscriber about a new publisher (a turtle spawned after the robot started) once, by a
+# publisherUpdate call; rospy does not retry a lost one, so on a loaded machine a robot could
+# wait forever (seen once in team20: robot 3 never connected). Subscribing again asks the
+# master for the publishers it has now.
+POSE_RESUBSCRIBE_S = 5.0
 
 
 @dataclass(frozen=True)
@@ -115,6 +122,8 @@ class MoveRobotNode:
         self._drive_timer = None
         self._stopped = False  # shutting down: no more commands but the final stop
         self._deferred = []  # log lines held back from the GO callback until the first tick
+        self._pose_sub = None
+        self._pose_subscribed_at = time.monotonic()
         # Synchronous: the first command leaves within the GO callback, the final stop
         # before the process exits.
         self._cmd_pub = unqueued_publisher('robot_%d/cmd_vel' % robot_id, Twist)
@@ -124,12 +133,19 @@ class MoveRobotNode:
         rospy.on_shutdown(self._stop)
         self._announce_timer = rospy.Timer(rospy.Duration(config.announce_period_s),
                                            self._on_announce_timer)
-        rospy.Subscriber('robot_%d/pose' % robot_id, Pose, self._on_pose, queue_size=1)
+        self._subscribe_pose()
         rospy.Subscriber('team_positions', RobotPosition, self._on_position,
                          queue_size=SHARED_QUEUE)
         # tcp_nodelay: GO is one small message; Nagle's algorithm could hold it back.
         rospy.Subscriber('team_status', RobotStatus, self._on_status, queue_size=SHARED_QUEUE,
                          tcp_nodelay=True)
+
+    def _subscribe_pose(self):
+        if self._pose_sub is not None:
+            self._pose_sub.unregister()
+        self._pose_sub = rospy.Subscriber('robot_%d/pose' % self._id, Pose, self._on_pose,
+                                          queue_size=1)
+        self._pose_subscribed_at = time.monotonic()
 
     # --- readiness -------------------------------------------------------------------------
     def _ready_msg(self):
@@ -163,6 +179,8 @@ class MoveRobotNode:
         if not ready:
             rospy.logwarn_throttle(5.0, 'Robot %d: no pose yet on %s'
                                    % (self._id, rospy.resolve_name('robot_%d/pose' % self._id)))
+            if time.monotonic() - self._pose_subscribed_at >= POSE_RESUBSCRIBE_S:
+                self._subscribe_pose()
             return
         self._status_pub.publish(self._ready_msg())
         rospy.loginfo('Robot %d: waiting for team', self._id)
