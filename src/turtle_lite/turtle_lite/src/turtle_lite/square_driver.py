@@ -1,7 +1,7 @@
 """draw_square's state machine and goal maths, as turtlesim's draw_square (no ROS).
 
 One SquareDriver.step() per timer tick turns the latest pose into the command to publish and
-the log events; the node in draw_square.py owns the timer, the topics and the logging.
+the log events; the node in draw_square_node.py owns the timer, the topics and the logging.
 """
 
 import math
