@@ -146,7 +146,7 @@ def child(n_robots, duration_s):
     from convoy.harness import POLL_S, LaunchedConvoy, convoy_node_names, launch_for
     from convoy.metrics import delays_since_newest, percentile
     from convoy.recording import BagRecorder, convoy_topics
-    from turtle_lite.testing import wait_for
+    from course_common.testing import wait_for
 
     out_dir = tempfile.mkdtemp(prefix='convoy_bench_')
     bag_path = os.path.join(out_dir, 'convoy.bag')

@@ -26,8 +26,8 @@ import time
 import numpy as np
 import rospy
 from convoy.harness import POLL_S, LaunchedConvoy
+from course_common.testing import WaitError, wait_for
 from geometry_msgs.msg import Pose2D, Twist
-from turtle_lite.testing import WaitError, wait_for
 from turtlesim.msg import Pose as TurtlePose
 from turtlesim.srv import TeleportAbsolute
 

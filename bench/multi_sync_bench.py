@@ -24,8 +24,8 @@ import time
 
 import rosgraph
 import rospy
+from course_common.testing import WaitError, wait_for
 from geometry_msgs.msg import Twist
-from turtle_lite.testing import WaitError, wait_for
 
 from multi_sync.msg import RobotStatus
 

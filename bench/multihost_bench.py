@@ -19,6 +19,7 @@ import sys
 import tempfile
 import time
 
+from course_common.testing import wait_for
 from multihost.harness import Team
 from multihost.hosts import Hosts, HostsError, unavailable_reason
 from multihost.lessons import (
@@ -29,7 +30,6 @@ from multihost.lessons import (
     start_convoy,
     start_multi_sync,
 )
-from turtle_lite.testing import wait_for
 
 RUNS = 3
 CONVOY_S = 20.0   # of pose/command pairs after the followers start, ~1250 per follower

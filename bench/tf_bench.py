@@ -23,8 +23,8 @@ import time
 
 import rosgraph
 import rospy
+from course_common.testing import wait_for
 from tf2_msgs.msg import TFMessage
-from turtle_lite.testing import wait_for
 from turtlesim.srv import Spawn
 
 TURTLES = 50

@@ -31,8 +31,8 @@ import time
 import rosgraph
 import rosnode
 import rospy
+from course_common.testing import wait_for
 from geometry_msgs.msg import Twist
-from turtle_lite.testing import wait_for
 from turtlesim.msg import Pose
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
 

@@ -3,8 +3,8 @@ import math
 import threading
 
 import rospy
+from course_common.testing import wait_for
 from geometry_msgs.msg import Twist
-from turtle_lite.testing import wait_for
 from turtlesim.msg import Pose
 
 TOLERANCE_M = 1.5  # the course's distance_tolerance (convoy_node's default)

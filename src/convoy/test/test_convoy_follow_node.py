@@ -7,7 +7,7 @@ import rosnode
 import rospy
 import rostest
 from convoy_testing import CAUGHT_UP_M, STATED_GAP_M, ConvoyWatch
-from turtle_lite.testing import wait_for
+from course_common.testing import wait_for
 
 PKG = 'convoy'
 STARTUP_TIMEOUT_S = 40.0

@@ -11,8 +11,8 @@ import rosnode
 import rospy
 import rostest
 from convoy_testing import TOLERANCE_M, ConvoyWatch, distance
+from course_common.testing import wait_for
 from geometry_msgs.msg import Twist
-from turtle_lite.testing import wait_for
 from turtlesim.msg import Pose
 from turtlesim.srv import TeleportAbsolute
 

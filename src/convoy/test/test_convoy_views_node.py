@@ -11,11 +11,11 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from course_common.testing import wait_for
+from course_common.testing.views import TfPoseCheck, results_dir
 from PIL import Image
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
-from turtle_lite.testing import wait_for
-from turtle_lite.testing_views import TfPoseCheck, results_dir
 from turtlesim.msg import Pose
 from visualization_msgs.msg import MarkerArray
 

@@ -6,9 +6,9 @@ import unittest
 
 import rospy
 import rostest
+from course_common.testing import wait_for
 from multi_sync.motion import team_layout
 from team_watch import WORLD_SIZE_M, NodeProcess, TeamWatch
-from turtle_lite.testing import wait_for
 
 # Generous deadlines: 20 Python nodes start slowly on a loaded 2-core machine.
 STARTUP_S = 90.0

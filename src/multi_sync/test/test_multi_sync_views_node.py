@@ -8,10 +8,10 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from course_common.testing.views import TfPoseCheck, results_dir
 from PIL import Image
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
-from turtle_lite.testing_views import TfPoseCheck, results_dir
 
 ROBOTS = ('robot_0', 'robot_1', 'robot_2', 'robot_3')
 START_DEADLINE_S = 60.0  # roslaunch of the team, rosservice spawns, on a loaded machine

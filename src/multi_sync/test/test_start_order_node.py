@@ -5,8 +5,8 @@ import unittest
 
 import rospy
 import rostest
+from course_common.testing import wait_for
 from team_watch import NodeProcess, TeamWatch
-from turtle_lite.testing import wait_for
 
 from multi_sync.msg import RobotStatus
 

@@ -11,8 +11,8 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from course_common.testing import wait_for
 from rosgraph_msgs.msg import Log
-from turtle_lite.testing import wait_for
 
 # chat_pkg's rostest helpers (recorder of /chatter and /rosout, Ctrl-C, counts), reused: the
 # C++ talker and listener of the lab are chat_pkg's nodes.

@@ -11,9 +11,9 @@ from collections import defaultdict
 import rosgraph
 import rospy
 import rostest
+from course_common.testing import wait_for
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import String
-from turtle_lite.testing import wait_for
 
 PKG = 'chat_pkg'
 START_DEADLINE_S = 30.0  # rosrun + rospy start-up on a loaded 2-core machine

@@ -9,8 +9,8 @@ import unittest
 
 import rospy
 import rostest
+from course_common.testing import wait_for
 from rosgraph_msgs.msg import Log
-from turtle_lite.testing import wait_for
 
 PKG = 'first_pkg'
 START_DEADLINE_S = 30.0  # rosrun + rospy start-up on a loaded 2-core machine

@@ -10,7 +10,7 @@ import sys
 import tempfile
 
 import pydot
-from turtle_lite.testing import wait_for
+from course_common.testing import wait_for
 
 RUN_DEADLINE_S = 60.0  # one `rosrun rqt_graph rqt_graph` (Python start-up, dot) under load
 GRAPH_DEADLINE_S = 60.0  # the launch file's nodes all registered (the convoy spawns turtles)

@@ -8,9 +8,9 @@ import unittest
 
 import numpy as np
 import rostest
+from course_common.testing import wait_for
 from graph_support import GRAPH_DEADLINE_S, results_dir
 from PIL import ImageGrab
-from turtle_lite.testing import wait_for
 
 PKG = 'rqt_graph'
 SCREEN = '1024x768x24'

@@ -4,10 +4,10 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.param_loader import get_private, load_or_exit
+from course_common.params import ParamError, check_name, check_number
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
-from turtle_lite.param_loader import get_private, load_or_exit
-from turtle_lite.params import ParamError, check_name, check_number
 from turtlesim.msg import Pose
 from visualization_msgs.msg import Marker, MarkerArray
 

@@ -3,8 +3,8 @@ import threading
 from dataclasses import dataclass
 
 import rospy
-from turtle_lite.param_loader import get_private, load_or_exit
-from turtle_lite.params import check_number, check_text
+from course_common.param_loader import get_private, load_or_exit
+from course_common.params import check_number, check_text
 from turtlesim.msg import Pose
 
 from convoy.control import (

@@ -15,9 +15,9 @@ import time
 import rosgraph
 import rospkg
 import rospy
+from course_common.testing import WaitError, wait_for
 from turtle_lite.rviz_snapshot import snapshot
 from turtle_lite.srv import SaveImage
-from turtle_lite.testing import WaitError, wait_for
 
 from convoy.bag_report import BagError, summarise_bag, write_figures
 from convoy.harness import POLL_S, HarnessError, LaunchedConvoy, launch_for

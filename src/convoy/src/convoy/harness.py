@@ -10,7 +10,7 @@ import subprocess
 import time
 
 import rosgraph
-from turtle_lite.testing import wait_for
+from course_common.testing import wait_for
 
 POLL_S = 0.05  # condition polling period (wait_for's poll_s): the harness waits for seconds
 STOP_TIMEOUT_S = 20.0  # roslaunch needs a few seconds to stop its nodes and master

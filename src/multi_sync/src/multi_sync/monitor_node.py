@@ -2,7 +2,7 @@
 import threading
 
 import rospy
-from turtle_lite.rospy_internals import caller_id, connection_ids
+from course_common.rospy_internals import caller_id, connection_ids
 
 from multi_sync.msg import RobotStatus
 from multi_sync.node_util import parse_argv_or_exit, synchronous_publisher

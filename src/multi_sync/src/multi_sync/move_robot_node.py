@@ -3,9 +3,9 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.param_loader import load_or_exit
+from course_common.params import check_number
 from geometry_msgs.msg import Twist
-from turtle_lite.param_loader import load_or_exit
-from turtle_lite.params import check_number
 from turtlesim.msg import Pose
 
 from multi_sync.motion import WORLD_SIZE_M, DriveLimits, TeamPositions, decide

@@ -3,8 +3,8 @@ import sys
 from dataclasses import dataclass
 
 import rospy
-from turtle_lite.param_loader import load_or_exit
-from turtle_lite.params import check_int, check_number
+from course_common.param_loader import load_or_exit
+from course_common.params import check_int, check_number
 from turtlesim.srv import Spawn
 
 from multi_sync.motion import team_layout

@@ -4,7 +4,7 @@ Per-host launch instead of roslaunch's <machine> tag: <machine> starts remote no
 (keys, known_hosts, and an env-loader script on every robot), which the namespaces here, and
 many lab networks, do not have; a roslaunch per host needs only ROS_MASTER_URI and ROS_IP.
 """
-from turtle_lite.testing import wait_for
+from course_common.testing import wait_for
 
 from multihost.harness import Probe
 

@@ -2,8 +2,8 @@
 robot2) on host 2, convoy2_node (robot2 -> robot3) on host 3. Seen from host 1 by a probe."""
 import time
 
+from course_common.testing import wait_for
 from multihost.lessons import start_convoy
-from turtle_lite.testing import wait_for
 
 CAUGHT_UP_M = 2.0   # the course's 1.5 m tolerance plus half a metre (as convoy's own tests)
 STATED_GAP_M = 2.5  # convoy's stated gap once caught up with the autopilot's 0.5 m/s

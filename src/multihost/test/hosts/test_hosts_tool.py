@@ -8,7 +8,7 @@ import sys
 import tempfile
 
 import pytest
-from turtle_lite.testing import wait_for
+from course_common.testing import wait_for
 
 from multihost import hosts, netns
 

@@ -4,8 +4,8 @@ Everything is seen from host 1 by a probe (poses, commands, GO, warnings), as a 
 """
 import time
 
+from course_common.testing import wait_for
 from multihost.lessons import MULTI_SYNC_ROBOTS, start_multi_sync
-from turtle_lite.testing import wait_for
 
 GO_S = 30.0        # monitor start -> GO, with the monitor's own start-up
 MOVE_S = 10.0      # GO -> every robot's first command, seen on host 1

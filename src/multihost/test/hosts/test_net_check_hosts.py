@@ -2,8 +2,8 @@
 
 Master on host 1; a publisher (rostopic pub) on host 2, configured well or badly.
 """
+from course_common.testing import wait_for
 from multihost.lessons import start_master
-from turtle_lite.testing import wait_for
 
 CHECK = ['rosrun', 'multihost', 'ros_net_check', '--timeout', '1']
 SILENCE_S = 5.0  # an echo that hears nothing for this long: the publisher is unreachable

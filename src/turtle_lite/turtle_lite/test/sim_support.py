@@ -16,9 +16,9 @@ import xmlrpc.client
 import rosgraph
 import rosnode
 import rospy
+from course_common.testing import wait_for
 from rosgraph_msgs.msg import Log
 from std_srvs.srv import Empty
-from turtle_lite.testing import wait_for
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 

@@ -10,11 +10,11 @@ import unittest
 import rosgraph
 import rospy
 import rostest
+from course_common.testing.views import TfPoseCheck, results_dir
 from PIL import Image
 from sim_support import POSE_TOL, START_DEADLINE_S, WORLD, wait_for
 from turtle_lite.rviz_screen import error_lines
 from turtle_lite.rviz_snapshot import RvizOnXvfb
-from turtle_lite.testing_views import TfPoseCheck, results_dir
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
 from visualization_msgs.msg import Marker, MarkerArray
 

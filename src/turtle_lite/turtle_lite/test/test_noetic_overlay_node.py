@@ -19,7 +19,7 @@ import unittest
 
 import rospy
 import rostest
-from turtle_lite.testing import wait_for
+from course_common.testing import wait_for
 
 BUILD_DEADLINE_S = 300.0  # cmake + catkin_make of a one-package overlay on a loaded machine
 RUN_DEADLINE_S = 60.0  # rosrun / roslaunch of one short-lived node

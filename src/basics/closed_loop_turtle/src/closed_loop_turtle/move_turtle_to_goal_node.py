@@ -4,9 +4,9 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.param_loader import get_private, load_or_exit
+from course_common.params import check_number
 from geometry_msgs.msg import Pose2D, Twist
-from turtle_lite.param_loader import get_private, load_or_exit
-from turtle_lite.params import check_number
 
 from closed_loop_turtle.go_to_goal import (
     DEFAULT_HEADING_TOLERANCE_RAD,

@@ -1,5 +1,5 @@
 """move_turtle's command line: which robot to drive and its topics (pure, no rospy)."""
-from turtle_lite.naming import graph_name_error
+from course_common.graph_names import graph_name_error
 
 DEFAULT_ROBOT = 'turtle1'  # the slides' first version drives turtle1 and takes no argument
 USAGE = 'usage: rosrun my_turtle move_turtle [ROBOT_NAME]   (default turtle1; e.g. turtle2)'

@@ -3,9 +3,9 @@ import contextlib
 from dataclasses import dataclass
 
 import rospy
+from course_common.param_loader import get_private, load_or_exit
+from course_common.params import check_number
 from geometry_msgs.msg import Twist
-from turtle_lite.param_loader import get_private, load_or_exit
-from turtle_lite.params import check_number
 
 from pioneer_mover.relay import DEFAULT_DIVISOR, check_divisor, scale_twist
 

@@ -4,12 +4,12 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.param_loader import get_private, load_or_exit
+from course_common.params import check_int, check_name, check_namespace, check_number
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
-from turtle_lite.param_loader import get_private, load_or_exit
-from turtle_lite.params import check_int, check_name, check_namespace, check_number
 from turtle_lite.pose_watch import PoseWatch
 from turtle_lite.trails import ARENA_RGB, Trail, arena_outline, robot_color
 

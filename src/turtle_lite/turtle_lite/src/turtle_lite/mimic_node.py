@@ -5,11 +5,11 @@ pose-to-command copy are the pure functions of mimic_relay.
 """
 
 import rospy
+from course_common.rospy_internals import name_mappings
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
 from turtle_lite.mimic_relay import mimic_topics, pose_to_command
-from turtle_lite.rospy_internals import name_mappings
 
 
 class MimicNode:

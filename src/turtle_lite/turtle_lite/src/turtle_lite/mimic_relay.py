@@ -5,8 +5,9 @@ Mirrors turtlesim's mimic (TURTLESIM.md 1.13); the node in mimic.py subscribes a
 
 import math
 
+from course_common.graph_names import validate_graph_name
+
 from turtle_lite.namespaces import append, remap, resolve_mappings, turtle_namespace
-from turtle_lite.naming import validate_graph_name
 
 INPUT_NS = "input"
 OUTPUT_NS = "output"

@@ -13,7 +13,7 @@ to it (TURTLESIM.md 1.9). roscpp resolves that namespace like this:
 rospy only remaps exact full names, so a rospy node has to do this itself.
 """
 
-from .naming import validate_graph_name
+from course_common.graph_names import validate_graph_name
 
 #: The per-turtle resources, in turtlesim's order of creation.
 TURTLE_TOPICS = ('cmd_vel', 'pose', 'color_sensor')

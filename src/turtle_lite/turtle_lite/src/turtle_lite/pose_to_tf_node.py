@@ -5,10 +5,10 @@ from dataclasses import dataclass
 
 import rospy
 import tf2_ros
+from course_common.param_loader import get_private, load_or_exit
+from course_common.params import check_name, check_name_list, check_namespace, check_number
 from geometry_msgs.msg import TransformStamped
 
-from turtle_lite.param_loader import get_private, load_or_exit
-from turtle_lite.params import check_name, check_name_list, check_namespace, check_number
 from turtle_lite.pose_watch import PoseWatch
 from turtle_lite.team_frames import pose_to_transform
 

@@ -16,11 +16,11 @@ import tempfile
 
 import numpy as np
 import rosgraph
+from course_common.testing import wait_for
 from PIL import Image, ImageGrab
 
 from turtle_lite.rviz_config import display_topics
 from turtle_lite.rviz_screen import shows_lesson
-from turtle_lite.testing import wait_for
 
 SCREEN = (1024, 800)
 START_DEADLINE_S = 60.0  # rviz with software GL on a loaded 2-core machine

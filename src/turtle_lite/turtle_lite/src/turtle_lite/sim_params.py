@@ -1,13 +1,13 @@
 """turtlesim_node's parameters: the frozen settings read once, and the background colour.
 
 turtlesim ignores a parameter of the wrong type and uses its default; so does this node, with
-a WARN naming the parameter, the value and the expected type (see turtle_lite.params).
+a WARN naming the parameter, the value and the expected type (see course_common.params).
 """
 from dataclasses import dataclass
 
 import rospy
+from course_common.params import ParamError, check_flag, check_int, check_text
 
-from .params import ParamError, check_flag, check_int, check_text
 from .world import DEFAULT_BACKGROUND
 
 DEFAULT_IMAGE_PATH = '~/.ros/turtle_lite.png'

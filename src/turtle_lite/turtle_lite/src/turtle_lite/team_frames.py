@@ -9,20 +9,14 @@ the one the ROS tf2 tutorials broadcast for turtlesim: parent ``world``, transla
 import math
 from collections import namedtuple
 
+from course_common.graph_names import normalize_namespace
+
 #: The message type whose topics are turtles' poses (turtlesim's, ours is the same).
 POSE_TYPE = 'turtlesim/Pose'
 POSE_LEAF = 'pose'
 
 Transform = namedtuple('Transform', 'x y z qx qy qz qw')
 """Translation (m) and unit quaternion (x, y, z, w) of a frame in its parent."""
-
-
-def normalize_namespace(namespace):
-    """'/', '/sim', 'sim/', ... as an absolute namespace ending in '/'. Raises ValueError."""
-    if not isinstance(namespace, str):
-        raise ValueError('namespace %r: expected a string such as / or /sim' % (namespace,))
-    ns = '/' + namespace.strip().strip('/')
-    return ns if ns == '/' else ns + '/'
 
 
 def frame_for_pose_topic(topic, namespace='/'):

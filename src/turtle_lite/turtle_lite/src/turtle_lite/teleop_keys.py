@@ -6,7 +6,7 @@ the bytes and publishes the Twists.
 
 from dataclasses import dataclass
 
-from turtle_lite.params import check_number
+from course_common.params import check_number
 
 # Only the last byte of an arrow escape sequence (ESC [ A) matters, exactly as in turtlesim,
 # so a plain uppercase A-D also drives the turtle.

@@ -6,7 +6,7 @@ objects, no rospy send queue: see that module for the measured reason).
 """
 import struct
 
-from .rospy_internals import has_subscribers, write_frame
+from course_common.rospy_internals import has_subscribers, write_frame
 
 #: TCPROS frames of turtlesim/Pose (5 float32) and turtlesim/Color (3 uint8): a
 #: little-endian uint32 length, then the fields in order (the md5sums fix this layout).

@@ -1,10 +1,9 @@
 """A turtle's six ROS resources in turtlesim_node: two tick publishers, three services, cmd_vel."""
 import rospy
+from course_common.rospy_internals import tick_publisher
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Color, Pose
 from turtlesim.srv import SetPen, TeleportAbsolute, TeleportRelative
-
-from .rospy_internals import tick_publisher
 
 
 class TurtleHandle:

@@ -9,9 +9,9 @@ import select
 import sys
 
 import rospy
+from course_common.param_loader import load_or_exit
 from geometry_msgs.msg import Twist
 
-from turtle_lite.param_loader import load_or_exit
 from turtle_lite.teleop_keys import (
     BANNER,
     DEFAULT_SCALE,

@@ -26,6 +26,8 @@ import threading
 import time
 
 import rospy
+from course_common.graph_names import graph_name_error
+from course_common.rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
 from std_srvs.srv import Empty, EmptyResponse
 from turtlesim.srv import (
     Kill,
@@ -40,8 +42,7 @@ from turtlesim.srv import (
 from turtle_lite.srv import SaveImage, SaveImageResponse
 
 from . import namespaces
-from .naming import NameCounter, graph_name_error
-from .rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
+from .naming import NameCounter
 from .sim_params import ensure_background_params, load_params, read_background
 from .tick_loop import TickLoop
 from .tick_publish import publish_tick

@@ -8,25 +8,11 @@ from turtle_lite.team_frames import (
     Transform,
     diff_topics,
     frame_for_pose_topic,
-    normalize_namespace,
     pose_to_transform,
     pose_topics,
 )
 
 TOL = 1e-12  # pure float maths: exact up to rounding
-
-
-@pytest.mark.parametrize('namespace, expected', [
-    ('/', '/'), ('', '/'), ('sim', '/sim/'), ('/sim/', '/sim/'), (' /a/b ', '/a/b/'),
-])
-def test_normalize_namespace(namespace, expected):
-    assert normalize_namespace(namespace) == expected
-
-
-@pytest.mark.parametrize('namespace', [None, 3, ['/']])
-def test_normalize_namespace_rejects_non_strings(namespace):
-    with pytest.raises(ValueError, match='namespace'):
-        normalize_namespace(namespace)
 
 
 @pytest.mark.parametrize('topic, namespace, frame', [

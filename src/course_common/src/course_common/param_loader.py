@@ -1,14 +1,14 @@
 """Reading a node's parameters once, the same way in every package.
 
 A node's load function builds its frozen parameter dataclass from get_private() and the
-checks of turtle_lite.params; main() calls load_or_exit(load, label), which logs a bad
+checks of course_common.params; main() calls load_or_exit(load, label), which logs a bad
 parameter as FATAL (naming it, its value and the expectation) and exits with status 1.
 """
 import sys
 
 import rospy
 
-from turtle_lite.params import ParamError
+from course_common.params import ParamError
 
 #: get_private()'s default that marks a parameter without a default (it must be set).
 REQUIRED = object()

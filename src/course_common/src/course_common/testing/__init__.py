@@ -51,8 +51,8 @@ def rospy_version():
 def pin(ok, attribute, meaning):
     """Fail, naming the rospy attribute, what it should mean and rospy's version, unless ok.
 
-    For the tests that pin the rospy internals turtle_lite.rospy_internals relies on.
+    For the tests that pin the rospy internals course_common.rospy_internals relies on.
     """
     if not ok:
-        raise AssertionError('installed rospy %s: %s no longer %s (turtle_lite.rospy_internals '
+        raise AssertionError('installed rospy %s: %s no longer %s (course_common.rospy_internals '
                              'relies on it)' % (rospy_version(), attribute, meaning))

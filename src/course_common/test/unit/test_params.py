@@ -1,8 +1,8 @@
-"""Unit tests for the parameter checks every package's loader uses (turtle_lite.params)."""
+"""Unit tests for the parameter checks every package's loader uses (course_common.params)."""
 import math
 
 import pytest
-from turtle_lite.params import (
+from course_common.params import (
     ParamError,
     check_flag,
     check_int,

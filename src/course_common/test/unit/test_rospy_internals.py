@@ -1,4 +1,4 @@
-"""Pins, without a master, the rospy internals turtle_lite.rospy_internals relies on.
+"""Pins, without a master, the rospy internals course_common.rospy_internals relies on.
 
 Each check fails naming the attribute, what it should do and the installed rospy's version.
 The behaviour that needs a master and connections (a publisher's connections, frames written
@@ -15,9 +15,9 @@ import rospy.impl.paramserver
 import rospy.impl.tcpros_base
 import rospy.names
 import rospy.topics
-from turtle_lite.testing import pin
+from course_common.testing import pin
 
-from turtle_lite import rospy_internals
+from course_common import rospy_internals
 
 RUN_TIMEOUT_S = 60.0  # a fresh interpreter importing rospy; generous on a loaded machine
 
@@ -56,7 +56,7 @@ def test_preshutdown_hook_gets_the_reason_before_shutdown():
     pin(callable(getattr(rospy.core, 'add_preshutdown_hook', None)),
         'rospy.core.add_preshutdown_hook', 'exists')
     out = _run('import rospy\n'
-               'from turtle_lite.rospy_internals import add_preshutdown_hook\n'
+               'from course_common.rospy_internals import add_preshutdown_hook\n'
                'add_preshutdown_hook(lambda r: print(r, rospy.is_shutdown()))\n'
                'rospy.signal_shutdown("pinned reason")\n')
     pin(out == 'pinned reason False', 'rospy.core.add_preshutdown_hook',
@@ -66,7 +66,7 @@ def test_preshutdown_hook_gets_the_reason_before_shutdown():
 def test_name_mappings_are_the_command_line_remaps():
     pin(callable(getattr(rospy.names, 'get_mappings', None)), 'rospy.names.get_mappings',
         'exists')
-    out = _run('from turtle_lite.rospy_internals import name_mappings\n'
+    out = _run('from course_common.rospy_internals import name_mappings\n'
                'print(sorted(name_mappings().items()))\n', 'input:=turtlesim1/turtle1',
                '/turtle1:=/robot1')
     pin(out == "[('/turtle1', '/robot1'), ('input', 'turtlesim1/turtle1')]",

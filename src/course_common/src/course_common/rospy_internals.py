@@ -1,7 +1,7 @@
 """The one place in the workspace that reaches past rospy's public API.
 
 turtle_lite's simulator and tools and multi_sync's monitor import these shortcuts from here
-(every package depends on turtle_lite); no other module touches ``Publisher.impl``,
+(every package depends on course_common); no other module touches ``Publisher.impl``,
 ``rospy.impl``, ``rospy.core``, ``rospy.names`` or a message's ``_connection_header``.
 
 Each shortcut is a small function saying which public call it replaces and what that saves.
@@ -17,7 +17,7 @@ import rospy.core
 import rospy.names
 from rospy.impl.paramserver import get_param_server_cache
 
-from turtle_lite.frames import send_frame
+from course_common.tcpros_frames import send_frame
 
 #: The parameter whose local cache entry cheap_rosout() seeds.
 ROSOUT_TOPICS_PARAM = '/rosout_disable_topics_generation'

@@ -1,16 +1,16 @@
 #!/usr/bin/env python3
-"""Pins, on a real master, what turtle_lite.rospy_internals relies on in the installed rospy.
+"""Pins, on a real master, what course_common.rospy_internals relies on in the installed rospy.
 
 Each failure names the rospy attribute, what it should do and rospy's version (pin()). The
 checks that need no master are in unit/test_rospy_internals.py.
 """
+import struct
 import threading
 import unittest
 
 import rospy
 import rostest
-from rosgraph_msgs.msg import Log
-from turtle_lite.rospy_internals import (
+from course_common.rospy_internals import (
     caller_id,
     cheap_rosout,
     connection_ids,
@@ -19,13 +19,16 @@ from turtle_lite.rospy_internals import (
     tick_publisher,
     write_frame,
 )
-from turtle_lite.testing import pin, wait_for
-from turtle_lite.tick_publish import POSE_BYTES, POSE_FRAME
+from course_common.testing import pin, wait_for
+from rosgraph_msgs.msg import Log
 from turtlesim.msg import Pose
 
 DEADLINE_S = 30.0  # connections between processes on a loaded 2-core machine
 # Values exact in float32, so a frame that arrives intact compares equal.
 POSE = (1.5, -2.25, 0.125, 3.0, -0.5)
+# One TCPROS frame of a turtlesim/Pose: 4-byte length, then five little-endian float32.
+POSE_FRAME = struct.Struct('<I5f')
+POSE_BYTES = 20
 ECHO_NODES = {'/pinned_echo_a', '/pinned_echo_b'}
 
 
@@ -128,4 +131,4 @@ class RospyInternalsTest(unittest.TestCase):
 
 if __name__ == '__main__':
     rospy.init_node('test_rospy_internals')
-    rostest.rosrun('turtle_lite', 'rospy_internals', RospyInternalsTest)
+    rostest.rosrun('course_common', 'rospy_internals', RospyInternalsTest)

@@ -1,10 +1,10 @@
-"""Unit tests of turtle_lite.frames: whole frames or nothing, and never a blocked sender."""
+"""Unit tests of course_common.tcpros_frames: a whole frame or nothing, never a blocked sender."""
 import socket
 import struct
 import threading
 
 import pytest
-from turtle_lite.frames import PartialFrameError, send_frame
+from course_common.tcpros_frames import PartialFrameError, send_frame
 
 FRAME = struct.Struct('<II')  # a sequence number and a marker, 8 bytes like a tiny message
 MARKER = 0xC0FFEE

@@ -14,7 +14,7 @@ import rospy
 import tf2_ros
 from turtlesim.msg import Pose
 
-from turtle_lite.testing import wait_for
+from course_common.testing import wait_for
 
 POSITION_TOL_M = 1e-4  # float32 poses through float64 transforms: far below a pose's change
 YAW_TOL_RAD = 1e-4

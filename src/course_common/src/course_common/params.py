@@ -8,7 +8,7 @@ message as FATAL and exits non-zero.
 """
 import math
 
-from turtle_lite.team_frames import normalize_namespace
+from course_common.graph_names import normalize_namespace
 
 
 class ParamError(ValueError):

@@ -1,0 +1,1 @@
+"""The workspace's shared code: what more than one package uses, owned by none of them."""
