@@ -29,7 +29,7 @@ SAFE_CAP = 64           # blocks: field codes are capped at 2 * 64 = 128 cells (
 STRIPE_ROWS = 192       # block rows per distance-transform stripe
 NUDGE = 1e-6            # cells: pushes a point past the boundary it stepped onto
 SQRT2 = math.sqrt(2.0)
-WALK_CELLS = 8          # crossings per axis in one batched cell walk
+WALK_CELLS = 4          # crossings per axis in one batched cell walk
 _WALK_K = np.arange(WALK_CELLS, dtype=float)
 
 
@@ -124,7 +124,7 @@ class StaticField:
             inv_x = np.where(dx != 0, 1.0 / dx, np.inf)
             inv_y = np.where(dy != 0, 1.0 / dy, np.inf)
             # clip each beam to the grid's box (slab test) so the march never leaves it
-            eps = 1e-9
+            eps = 1e-3      # cells: keeps every point the march looks at inside the grid
             tx0 = np.where(dx != 0, (eps - px) * inv_x, -np.inf)
             tx1 = np.where(dx != 0, (s.cols - eps - px) * inv_x, np.inf)
             ty0 = np.where(dy != 0, (eps - py) * inv_y, -np.inf)
@@ -155,6 +155,7 @@ class StaticField:
                 cell[live[hit]] = idx[hit]
             step = np.minimum((cx + offx - x) * inv_x, (cy + offy - y) * inv_y)
             np.maximum(step, code, out=step)
+            t0 = t
             t = t + step + NUDGE
             walk = np.flatnonzero(code < WALK_CELLS)
             if walk.size:
@@ -162,7 +163,7 @@ class StaticField:
                 # shallow angle): walk at least WALK_CELLS cells exactly instead
                 wt, whit, wcell = self._walk(px[walk], py[walk], dx[walk], dy[walk],
                                              inv_x[walk], inv_y[walk], cx[walk], cy[walk],
-                                             tend[walk])
+                                             t0[walk], tend[walk])
                 t[walk] = wt
                 if whit.any():
                     hw = walk[whit]
@@ -177,7 +178,7 @@ class StaticField:
         return rng, cell
 
 
-    def _walk(self, px, py, dx, dy, inv_x, inv_y, cx, cy, tend):
+    def _walk(self, px, py, dx, dy, inv_x, inv_y, cx, cy, tcur, tend):
         """An exact cell walk of WALK_CELLS x- and WALK_CELLS y-boundary crossings at once.
 
         The crossings of x = integer and y = integer lines are known in closed form; merged
@@ -196,12 +197,11 @@ class StaticField:
         lim = np.minimum(tx[:, -1], ty[:, -1])
         tt = np.concatenate((tx, ty), axis=1)
         valid = (tt <= lim[:, None]) & (tt < tend[:, None])
-        tn = np.where(valid, tt, 0.0) + NUDGE
-        qx = np.floor(px[:, None] + dx[:, None] * tn).astype(np.int64)
-        qy = np.floor(py[:, None] + dy[:, None] * tn).astype(np.int64)
-        np.clip(qx, 0, s.cols - 1, out=qx)
-        np.clip(qy, 0, s.rows - 1, out=qy)
-        qi = qy * s.cols + qx
+        # invalid crossings look at the current cell (always inside the grid: tend stops
+        # short of the grid's edge)
+        tn = np.where(valid, tt, tcur[:, None]) + NUDGE
+        qi = (np.floor(py[:, None] + dy[:, None] * tn).astype(np.int64) * s.cols
+              + np.floor(px[:, None] + dx[:, None] * tn).astype(np.int64))
         occ = (self._flat[qi] == OCCUPIED) & valid
         # the first occupied cell entered is the one with the earliest entry time
         first = np.where(occ, tt, np.inf).argmin(axis=1)
