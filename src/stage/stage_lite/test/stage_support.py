@@ -6,6 +6,7 @@ Times on topics are compared in simulated time (the stamps), never against the w
 """
 import os
 import subprocess
+import tempfile
 import threading
 
 import rosgraph
@@ -99,11 +100,22 @@ def run_stageros(*args, timeout_s=START_DEADLINE_S):
     return done.returncode, done.stdout + done.stderr
 
 
-def start_stageros(*args):
-    """A stageros process left running (stop it with stop_process)."""
-    return subprocess.Popen(['rosrun', 'stage_ros', 'stageros', *args],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
+class _Stageros(subprocess.Popen):
+    """A stageros process whose output goes to a file, readable after it ended."""
+
+    def output(self):
+        with open(self.log_path, encoding='utf-8', errors='replace') as f:
+            return f.read()
+
+
+def start_stageros(*args, env=None):
+    """A stageros process left running (stop it with stop_process; then .output())."""
+    fd, path = tempfile.mkstemp(prefix='stageros_', suffix='.log')
+    with os.fdopen(fd, 'w') as log:  # the child keeps its own copy of the descriptor
+        proc = _Stageros(['rosrun', 'stage_ros', 'stageros', *args], stdout=log,
+                         stderr=subprocess.STDOUT, start_new_session=True, env=env)
+    proc.log_path = path
+    return proc
 
 
 def stop_process(proc, deadline_s=EVENT_DEADLINE_S):

@@ -10,6 +10,7 @@ import rostest
 from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import OccupancyGrid, Odometry
 from PIL import Image
+from stage_lite.srv import SaveImage
 from stage_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
@@ -21,8 +22,6 @@ from stage_support import (
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
-
-from stage_lite.srv import SaveImage
 
 MODELS = ('robot0', 'robot1', 'robot2', 'robot3')
 DRIVE_MPS = 0.5

@@ -85,7 +85,7 @@ class StagerosInterfaceTest(unittest.TestCase):
                       for m in rec.messages()][1:RUN_STEPS + 1]
             rec.close()
             self.assertTrue(all(s > 0 for s in stamps), rec.topic)
-            steps = {b - a for a, b in zip(stamps, stamps[1:])}
+            steps = {b - a for a, b in zip(stamps, stamps[1:], strict=False)}
             self.assertEqual(steps, {STEP_NS}, '%s: one message per 0.1 s of sim time'
                              % rec.topic)
 
@@ -96,7 +96,7 @@ class StagerosInterfaceTest(unittest.TestCase):
         pairs = {(t.header.frame_id, t.child_frame_id): t for t in msg.transforms}
         stamps = {stamp_ns(t) for t in msg.transforms}
         self.assertEqual(len(stamps), 1, 'every transform of a step has its stamp')
-        for n, (x, y) in enumerate(STARTS):
+        for n in range(ROBOTS):
             p = '/robot_%d/' % n
             for parent, child in (('odom', 'base_footprint'), ('base_footprint', 'base_link'),
                                   ('base_link', 'base_laser_link')):

@@ -6,14 +6,13 @@ course_common.rospy_internals.write_frame (no message objects, no rospy send que
 collect() runs under the node's lock (it reads the world); send() runs outside it.
 """
 import rospy
+from course_common.rospy_internals import has_subscribers, tick_publisher, write_frame
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Bool
 from tf2_msgs.msg import TFMessage
-
-from course_common.rospy_internals import has_subscribers, tick_publisher, write_frame
 
 from . import wire
 

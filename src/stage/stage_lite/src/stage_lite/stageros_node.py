@@ -37,7 +37,6 @@ import threading
 import time
 
 import rospy
-
 from course_common.param_loader import load_or_exit
 from course_common.rospy_internals import cheap_rosout
 
