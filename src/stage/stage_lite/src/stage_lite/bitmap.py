@@ -113,7 +113,7 @@ def load_image(path):
             grey = np.asarray(im.convert('L'))
     except ImportError:
         raise WorldError(path, None, 'PNG bitmaps need python3-pil') from None
-    except Exception:  # noqa: BLE001 - PIL raises many kinds for a non-image
+    except Exception:
         raise WorldError(path, None, 'not an image (PGM or PNG expected)') from None
     return grey <= OCCUPIED_MAX
 

@@ -228,7 +228,7 @@ def read_position(ent):
     odom_error = ent.tuple('odom_error', DEFAULT_ODOM_ERROR)
     vb = ent.tuple('velocity_bounds', DEFAULT_VBOUNDS, angles=(6, 7))
     bounds = (vb[0], vb[1], vb[2], vb[3], vb[6], vb[7])
-    for lo, hi in zip(bounds[::2], bounds[1::2]):
+    for lo, hi in zip(bounds[::2], bounds[1::2], strict=True):
         if lo > hi:
             raise ent.error('velocity_bounds', 'velocity_bounds needs each min <= max')
     return drive, loc, odom_error, bounds

@@ -41,7 +41,7 @@ from course_common.param_loader import load_or_exit
 from course_common.rospy_internals import cheap_rosout
 
 from .names import all_robot_names, shared_namespaces
-from .pacing import SimClock, Throttle, Watchdog
+from .pacing import SimClock, Throttle, Watchdog, check_speedup
 from .stage_publish import StepOutput
 from .stage_services import StageServices
 from .stageros_args import ArgsError, parse_args
@@ -70,8 +70,7 @@ class StageNode:
             rospy.logwarn(line)
         self.output = StepOutput(world, self.names, params, self.on_cmd_vel)
         self.services = StageServices(self)
-        speedup = world.speedup if params.speedup is None else params.speedup
-        self.loop = StepLoop(self, speedup)
+        self.loop = StepLoop(self, world_speedup(world, params))
 
     def on_cmd_vel(self, msg, index):
         vx, vy, wz = msg.linear.x, msg.linear.y, msg.angular.z
@@ -106,6 +105,16 @@ class StageNode:
                    w.interval_sim_s * 1000.0, self.loop.describe(),
                    ('%g s' % self.params.base_watchdog_timeout_s)
                    if self.params.base_watchdog_timeout_s > 0 else 'off'))
+
+
+def world_speedup(world, params):
+    """~speedup, else the world's `speedup` (ValueError if that one is bad)."""
+    if params.speedup is not None:
+        return params.speedup
+    try:
+        return check_speedup(world.speedup)
+    except ValueError as err:
+        raise ValueError('speedup %r: %s' % (world.speedup, err)) from None
 
 
 def _fatal(text):
@@ -146,7 +155,10 @@ def main(argv=None):
         rospy.logwarn('stageros: ignoring the argument %r (usage: stageros [-g] [-u] WORLD)',
                       extra)
     world = load_world_or_exit(args.world_path)
-    node = StageNode(world, args, params)
+    try:
+        node = StageNode(world, args, params)
+    except ValueError as err:  # a bad speedup or interval_sim in the world file
+        _fatal('%s: %s' % (world.path, err))
     rospy.loginfo('stageros: %s', node.describe())
     node.loop.start()
     try:

@@ -301,7 +301,7 @@ class World:
                 rr = np.array([self._statics[i].ranger_return for i in field.members])
                 inten = np.where(cell >= 0, rr[lab], 0.0)
             start = 0
-            for (r, g), n in zip(members, counts):
+            for (r, g), n in zip(members, counts, strict=True):
                 sl = slice(start, start + n)
                 start += n
                 self._bodies(r, g, ox[sl][:1], oy[sl][:1], ang[sl], rng, inten, sl)

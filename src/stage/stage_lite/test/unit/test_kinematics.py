@@ -3,8 +3,14 @@ import math
 
 import numpy as np
 import pytest
-from stage_lite.kinematics import (clamp_command, euler_step, rect_corners, rect_gap,
-                                   rect_samples, z_overlap)
+from stage_lite.kinematics import (
+    clamp_command,
+    euler_step,
+    rect_corners,
+    rect_gap,
+    rect_samples,
+    z_overlap,
+)
 
 TOL = 1e-12  # metres / radians: closed-form arithmetic
 
