@@ -35,6 +35,10 @@ class StagerosBadInputTest(unittest.TestCase):
         self._fails(['-g', world('node_bad_bitmap.world')], 'node_bad_bitmap.world',
                     'node_missing_map.pgm')
 
+    def test_bad_speedup_in_the_world_names_the_file(self):
+        self._fails(['-g', world('node_bad_speedup.world')], 'node_bad_speedup.world:2:',
+                    'speedup')
+
     def test_no_world_file_prints_the_usage(self):
         self._fails(['-g'], 'Usage: stageros [-g] [-u] WORLD')
 
