@@ -5,7 +5,9 @@ stageros's mapName(): with more than one robot, or with ``-u``, every name is ab
 (a name Stage made up, ``position:0``, has a colon and falls back to ``robot_<N>``). With
 one robot and no ``-u`` the names are relative (``odom``, ``base_scan``), so the node's
 namespace applies. Several rangers on one robot are ``base_scan_<k>`` and
-``base_laser_link_<k>``. Frame ids are the same strings (the leading '/' that tf2 rejects,
+``base_laser_link_<k>``, and these per-device names are always absolute: with one robot and
+no ``-u`` they are ``/base_scan_<k>`` and ``/base_laser_link_<k>`` (mapName's device form puts
+a '/' before them even when the robot's other names are relative). Frame ids are the same strings (the leading '/' that tf2 rejects,
 stage_ros #68/#69); tf2_frames=True drops it, the opt-in fix.
 """
 from dataclasses import dataclass
@@ -50,8 +52,9 @@ def robot_names(index, model_name, robot_count, ranger_count, use_model_names=Fa
         scans = (p + 'base_scan',)
         lasers = (p + 'base_laser_link',)
     else:
-        scans = tuple('%sbase_scan_%d' % (p, k) for k in range(ranger_count))
-        lasers = tuple('%sbase_laser_link_%d' % (p, k) for k in range(ranger_count))
+        device_prefix = p or '/'  # per-device names are absolute even for one robot
+        scans = tuple('%sbase_scan_%d' % (device_prefix, k) for k in range(ranger_count))
+        lasers = tuple('%sbase_laser_link_%d' % (device_prefix, k) for k in range(ranger_count))
     return RobotNames(
         cmd_vel=p + 'cmd_vel', odom=p + 'odom', ground_truth=p + 'base_pose_ground_truth',
         stall=p + 'stall', scans=scans,

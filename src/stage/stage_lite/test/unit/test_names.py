@@ -36,14 +36,60 @@ def test_several_robots_keep_the_leading_slash_unless_tf2_frames():
          ('robot_2/base_laser_link',))
 
 
-@pytest.mark.parametrize('rangers, scans, frames', [
-    (0, (), ()),
-    (2, ('/robot_0/base_scan_0', '/robot_0/base_scan_1'),
+# Every case of stage_ros 1.8.0's mapName: (index, model name, robots, rangers, -u) ->
+# (odom topic, scan topics, laser frames). Per-device names (several rangers) are absolute
+# even for one robot without -u.
+NAME_CASES = [
+    # one robot, no -u: relative; one ranger, no ranger, two rangers (absolute, no robot ns)
+    (0, 'robot0', 1, 1, False, 'odom', ('base_scan',), ('base_laser_link',)),
+    (0, 'robot0', 1, 0, False, 'odom', (), ()),
+    (0, 'robot0', 1, 2, False, 'odom', ('/base_scan_0', '/base_scan_1'),
+     ('/base_laser_link_0', '/base_laser_link_1')),
+    # one robot with -u: absolute, the model's own name
+    (0, 'robot0', 1, 1, True, '/robot0/odom', ('/robot0/base_scan',),
+     ('/robot0/base_laser_link',)),
+    (0, 'robot0', 1, 2, True, '/robot0/odom', ('/robot0/base_scan_0', '/robot0/base_scan_1'),
+     ('/robot0/base_laser_link_0', '/robot0/base_laser_link_1')),
+    # one robot with -u but no name of its own (none, or Stage's token with a colon)
+    (0, '', 1, 1, True, '/robot_0/odom', ('/robot_0/base_scan',),
+     ('/robot_0/base_laser_link',)),
+    (0, 'position:0', 1, 2, True, '/robot_0/odom', ('/robot_0/base_scan_0', '/robot_0/base_scan_1'),
      ('/robot_0/base_laser_link_0', '/robot_0/base_laser_link_1')),
-])
-def test_ranger_counts(rangers, scans, frames):
-    n = robot_names(0, 'r', 2, rangers)
+    # several robots, no -u: /robot_<N>/ whatever the model is called
+    (2, 'robot2', 4, 1, False, '/robot_2/odom', ('/robot_2/base_scan',),
+     ('/robot_2/base_laser_link',)),
+    (0, 'r', 2, 0, False, '/robot_0/odom', (), ()),
+    (1, 'r', 2, 2, False, '/robot_1/odom', ('/robot_1/base_scan_0', '/robot_1/base_scan_1'),
+     ('/robot_1/base_laser_link_0', '/robot_1/base_laser_link_1')),
+    # several robots with -u
+    (3, 'robot3', 4, 1, True, '/robot3/odom', ('/robot3/base_scan',),
+     ('/robot3/base_laser_link',)),
+    (1, 'position:1', 2, 1, True, '/robot_1/odom', ('/robot_1/base_scan',),
+     ('/robot_1/base_laser_link',)),
+    (1, 'b', 2, 2, True, '/b/odom', ('/b/base_scan_0', '/b/base_scan_1'),
+     ('/b/base_laser_link_0', '/b/base_laser_link_1')),
+]
+
+
+@pytest.mark.parametrize('index, model, count, rangers, umn, odom, scans, frames', NAME_CASES)
+def test_map_name_cases(index, model, count, rangers, umn, odom, scans, frames):
+    n = robot_names(index, model, count, rangers, use_model_names=umn)
+    p = odom[:-len('odom')]
+    assert (n.cmd_vel, n.odom, n.ground_truth, n.stall) == \
+        (p + 'cmd_vel', odom, p + 'base_pose_ground_truth', p + 'stall')
+    assert (n.odom_frame, n.footprint_frame, n.base_frame) == \
+        (odom, p + 'base_footprint', p + 'base_link')
     assert (n.scans, n.laser_frames) == (scans, frames)
+
+
+@pytest.mark.parametrize('index, model, count, rangers, umn, odom, scans, frames', NAME_CASES)
+def test_tf2_frames_only_drop_the_leading_slash_of_frames(index, model, count, rangers, umn,
+                                                          odom, scans, frames):
+    n = robot_names(index, model, count, rangers, use_model_names=umn, tf2_frames=True)
+    assert (n.odom, n.scans) == (odom, scans)  # topics unchanged
+    assert n.odom_frame == odom.lstrip('/')
+    assert n.laser_frames == tuple(f.lstrip('/') for f in frames)
+    assert not any(f.startswith('/') for f in (n.footprint_frame, n.base_frame))
 
 
 @pytest.mark.parametrize('args', [(-1, 'r', 2, 1), (2, 'r', 2, 1), (0, 'r', 0, 1), (0, 'r', 1, -1)])
