@@ -1,53 +1,57 @@
 """Ray casts for every beam of every ranger at once: the simulator's hot path.
 
-Static obstacles (the floor plan, plain models) live on the world grid. A beam is marched
-through it by sphere tracing on a precomputed distance field: from a point in cell c it may
-jump by a lower bound of the distance from anywhere in c to the nearest occupied cell, or at
-least to where it leaves c (an exact cell walk near walls). It stops at the exact entry point of
-the first occupied cell, so ranges are quantised to the grid as Stage's are (Stage walks the
-same grid). Moving bodies (other robots) are few and rectangular: they are hit analytically.
-All loops run over numpy arrays of the still-travelling beams; the Python loop runs once per
-march step, not per beam.
+Static obstacles (the floor plan, plain models) live on the world grid. Each free cell holds
+D, its Chebyshev (chessboard) distance to the nearest occupied cell: the square of cells
+within D - 1 of it is free. A beam in the cell jumps straight to where it leaves that square
+(for D = 1, the cell itself: an exact cell walk), so it never skips an occupied cell and stops
+at the exact entry point of the first one: ranges are quantised to the grid as Stage's are
+(Stage walks the same grid). Beams creeping along a wall (small D) walk many cells at once
+instead (exact, batched), the more the fewer beams are left. Moving bodies (other robots) are
+few and rectangular: they are hit analytically. All loops run over numpy arrays of the
+still-travelling beams; the Python loop runs once per march step, not per beam.
 
 Units: the field and the march work in cells; the public functions take and give metres.
 """
 
-import math
 
 import numpy as np
 
-try:  # scipy's exact Euclidean distance transform; without it the march walks cell by cell
-    from scipy.ndimage import distance_transform_edt
+try:  # scipy's chessboard distance transform; without it the march walks cell by cell
+    from scipy.ndimage import distance_transform_cdt
 except ImportError:  # pragma: no cover - the workspace installs python3-scipy
-    distance_transform_edt = None
+    distance_transform_cdt = None
 
-OCCUPIED = 255          # field code of an occupied cell
-BLOCK = 2               # the distance transform runs on 2 x 2-cell blocks: a quarter of the
-                        # time and memory, for jumps at most ~3 cells shorter near walls
-SAFE_CAP = 64           # blocks: field codes are capped at 2 * 64 = 128 cells (2.56 m at 2 cm);
-                        # bounds the transform's stripe margin and so its temporary memory
-STRIPE_ROWS = 192       # block rows per distance-transform stripe
+OCCUPIED = 0            # field code of an occupied cell; a free cell holds D >= 1
+BLOCK = 2               # the far field's transform runs on 2 x 2-cell blocks
+MAX_CODE = 255          # D is capped (uint8): jumps of at most 254 cells (5 m at 2 cm)
+FINE_CAP = 64           # the full-resolution transform is exact up to this D ...
+STRIPE_ROWS = 512       # ... computed in stripes of this many rows
 NUDGE = 1e-6            # cells: pushes a point past the boundary it stepped onto
-SQRT2 = math.sqrt(2.0)
-WALK_CELLS = 4          # crossings per axis in one batched cell walk
-_WALK_K = np.arange(WALK_CELLS, dtype=float)
+WALK_MIN = 4            # boundary crossings per axis in one batched walk, at least ...
+WALK_MAX = 256          # ... and at most
+WALK_BUDGET = 2048      # crossings per axis in one walk over all its beams: bounds its arrays
+WALK_STEP = 0.25        # a beam walks when its jump is shorter than this many times K cells
+# the row of each per-beam constant in StaticField.march's table
+_PX, _PY, _DX, _DY, _IX, _IY, _OX, _OY, _SX, _SY, _TEND, _N = range(12)
 
 
-def safe_field(occupied, block=BLOCK, cap=SAFE_CAP):
-    """uint8 codes: OCCUPIED for an occupied cell, else floor of a lower bound (cells) of the
-    distance from any point of the cell to any occupied cell, at most block * cap.
+def chebyshev_field(occupied, block=BLOCK, fine_cap=FINE_CAP, stripe_rows=STRIPE_ROWS):
+    """uint8 codes: OCCUPIED (0) for an occupied cell, else D >= 1 such that every cell
+    within Chebyshev distance D - 1 of it is free, capped at MAX_CODE.
 
-    On `block` x `block` blocks (a block is occupied when any of its cells is), the Euclidean
-    transform gives the centre-to-centre distance d; two unit squares whose centres are d
-    apart are at least d - sqrt(2) apart, and every cell lies inside its block. Computed in
-    row stripes with a margin of `cap` rows: exact up to `cap`, a lower bound above.
+    Two lower bounds of the cell's chessboard distance to the nearest occupied cell, the
+    larger kept: the exact one up to `fine_cap`, from the transform of the full grid in row
+    stripes with a margin of `fine_cap` rows (bounded temporary memory), and a coarse one on
+    `block` x `block` blocks (a block is occupied when any of its cells is) for the far
+    field: the blocks within Db - 1 of a cell's block are free and cover every cell within
+    block * (Db - 1) of it.
     """
     rows, cols = occupied.shape
-    out = np.zeros((rows, cols), np.uint8)
+    out = np.full((rows, cols), MAX_CODE, np.uint8)
     if not occupied.any():
-        out[:] = min(254, block * cap)
         return out
-    if distance_transform_edt is None:
+    if distance_transform_cdt is None:
+        out[:] = 1
         out[occupied] = OCCUPIED
         return out
     br, bc = -(-rows // block), -(-cols // block)
@@ -55,21 +59,26 @@ def safe_field(occupied, block=BLOCK, cap=SAFE_CAP):
     padded[:rows, :cols] = occupied
     blocks = padded.reshape(br, block, bc, block).any(axis=(1, 3))
     del padded
-    coarse = np.zeros((br, bc), np.uint8)
-    margin = cap + 2
-    for r0 in range(0, br, STRIPE_ROWS):
-        r1 = min(br, r0 + STRIPE_ROWS)
-        a, b = max(0, r0 - margin), min(br, r1 + margin)
-        d = distance_transform_edt(~blocks[a:b])[r0 - a:r1 - a]
-        d -= SQRT2
-        np.clip(d, 0, cap, out=d)
-        d *= block
-        np.minimum(d, 254, out=d)
-        coarse[r0:r1] = d.astype(np.uint8)
+    d = distance_transform_cdt(~blocks, metric='chessboard')
+    del blocks
+    d -= 1
+    d *= block
+    d += 1
+    np.clip(d, 1, MAX_CODE, out=d)
+    coarse = d.astype(np.uint8)
+    del d
     for k in range(block):
         for j in range(block):
             part = out[k::block, j::block]
             part[:] = coarse[:part.shape[0], :part.shape[1]]
+    del coarse
+    free = ~occupied
+    for r0 in range(0, rows, stripe_rows):
+        r1 = min(rows, r0 + stripe_rows)
+        a, b = max(0, r0 - fine_cap), min(rows, r1 + fine_cap)
+        d = distance_transform_cdt(free[a:b], metric='chessboard')[r0 - a:r1 - a]
+        np.minimum(d, fine_cap, out=d)
+        np.maximum(out[r0:r1], d, out=out[r0:r1], casting='unsafe')
     out[occupied] = OCCUPIED
     return out
 
@@ -80,8 +89,10 @@ class StaticField:
     def __init__(self, occupied, spec):
         self.spec = spec
         self.occupied = occupied
-        self.code = safe_field(occupied)
+        self.code = chebyshev_field(occupied)
         self._flat = self.code.ravel()
+        # reach (cells) of the free square round a cell, by code: D - 1, none when occupied
+        self._reach = np.maximum(np.arange(256, dtype=float) - 1.0, 0.0)
 
     def cells(self, x, y):
         """Flat cell indices of world points, -1 outside the grid."""
@@ -101,28 +112,35 @@ class StaticField:
         idx = self.cells(np.array([x]), np.array([y]))[0]
         if idx < 0:
             return 0.0
-        v = int(self._flat[idx])
-        return 0.0 if v == OCCUPIED else v * self.spec.resolution
+        return float(self._reach[self._flat[idx]]) * self.spec.resolution
 
     def march(self, ox, oy, ang, max_range):
         """Casts beams from world points (ox, oy) at world angles `ang` (arrays) up to
         `max_range` (m, array or scalar). Returns (range_m, cell): the distance to the first
         occupied cell (inf on a miss) and that cell's flat index (-1 on a miss)."""
+        ang = np.asarray(ang, float)
+        return self.march_dir(ox, oy, np.cos(ang), np.sin(ang), max_range)
+
+    def march_dir(self, ox, oy, dx, dy, max_range):
+        """march() with the beams' unit directions (cos, sin) given."""
         s = self.spec
         res = s.resolution
-        n = np.size(ang)
+        n = np.size(dx)
         rng = np.full(n, np.inf)
         cell = np.full(n, -1, np.int64)
         if n == 0:
             return rng, cell
-        dx = np.cos(ang)
-        dy = np.sin(ang)
-        px = (np.asarray(ox, float) - s.origin_x) / res * np.ones(n)
-        py = (np.asarray(oy, float) - s.origin_y) / res * np.ones(n)
-        tend = np.broadcast_to(np.asarray(max_range, float) / res, (n,)).copy()
+        k = np.empty((_N, n))
+        k[_PX] = (np.asarray(ox, float) - s.origin_x) / res
+        k[_PY] = (np.asarray(oy, float) - s.origin_y) / res
+        k[_DX] = dx
+        k[_DY] = dy
+        k[_TEND] = np.asarray(max_range, float) / res
+        px, py, dx, dy = k[_PX], k[_PY], k[_DX], k[_DY]
         with np.errstate(divide='ignore', invalid='ignore'):
-            inv_x = np.where(dx != 0, 1.0 / dx, np.inf)
-            inv_y = np.where(dy != 0, 1.0 / dy, np.inf)
+            k[_IX] = np.where(dx != 0, 1.0 / dx, np.inf)   # not -inf for dx = -0.0
+            k[_IY] = np.where(dy != 0, 1.0 / dy, np.inf)
+            inv_x, inv_y = k[_IX], k[_IY]
             # clip each beam to the grid's box (slab test) so the march never leaves it
             eps = 1e-3      # cells: keeps every point the march looks at inside the grid
             tx0 = np.where(dx != 0, (eps - px) * inv_x, -np.inf)
@@ -132,82 +150,114 @@ class StaticField:
         inside_x = (dx != 0) | ((px > 0) & (px < s.cols))
         inside_y = (dy != 0) | ((py > 0) & (py < s.rows))
         t = np.maximum(0.0, np.maximum(np.minimum(tx0, tx1), np.minimum(ty0, ty1)))
-        tend = np.minimum(tend, np.minimum(np.maximum(tx0, tx1), np.maximum(ty0, ty1)))
-        live = np.flatnonzero(inside_x & inside_y & (t <= tend))
-        # per-beam constants of the cell walk: the boundary ahead is cell + off
-        offx = (dx >= 0).astype(float)
-        offy = (dy >= 0).astype(float)
-        px, py, dx, dy = px[live], py[live], dx[live], dy[live]
-        inv_x, inv_y, offx, offy = inv_x[live], inv_y[live], offx[live], offy[live]
-        t, tend = t[live], tend[live]
-        flat = self._flat
-        cols = s.cols
+        np.minimum(k[_TEND], np.minimum(np.maximum(tx0, tx1), np.maximum(ty0, ty1)),
+                   out=k[_TEND])
+        live = np.flatnonzero(inside_x & inside_y & (t <= k[_TEND]))
+        # the boundary ahead of a point in cell c is c + off; the free square's is that
+        # plus sign * reach
+        k[_OX] = dx >= 0
+        k[_OY] = dy >= 0
+        k[_SX] = 2.0 * k[_OX] - 1.0
+        k[_SY] = 2.0 * k[_OY] - 1.0
+        if live.size < n:
+            k, t = k[:, live], t[live]
+        flat, reach, cols = self._flat, self._reach, s.cols
         while live.size:
-            x = px + dx * t
-            y = py + dy * t
+            px, py, dx, dy, inv_x, inv_y, offx, offy, sx, sy, tend = k[:_N]
+            x = dx * t
+            x += px
+            y = dy * t
+            y += py
             cx = np.floor(x)
             cy = np.floor(y)
-            idx = cy.astype(np.int64) * cols + cx.astype(np.int64)
+            fi = cy * cols
+            fi += cx
+            idx = fi.astype(np.intp)
             code = flat[idx]
             hit = code == OCCUPIED
             if hit.any():
                 rng[live[hit]] = t[hit] * res
                 cell[live[hit]] = idx[hit]
-            step = np.minimum((cx + offx - x) * inv_x, (cy + offy - y) * inv_y)
-            np.maximum(step, code, out=step)
+            r = reach[code]
+            # where the beam leaves the free square round its cell
+            ex = sx * r
+            ex += offx
+            ex += cx
+            ex -= x
+            ex *= inv_x
+            ey = sy * r
+            ey += offy
+            ey += cy
+            ey -= y
+            ey *= inv_y
+            np.minimum(ex, ey, out=ex)
+            ex += NUDGE
             t0 = t
-            t = t + step + NUDGE
-            walk = np.flatnonzero(code < WALK_CELLS)
+            t = t + ex
+            # beams with little room walk: a batched walk of K crossings per axis costs
+            # about 2K jumps' worth of arithmetic but saves K / D Python iterations
+            kw = min(WALK_MAX, max(WALK_MIN, WALK_BUDGET // live.size))
+            walk = ex < WALK_STEP * kw
+            walk &= ~hit
+            walk = np.flatnonzero(walk)
             if walk.size:
-                # near a wall jumps shrink (sphere tracing crawls along a wall at a
-                # shallow angle): walk at least WALK_CELLS cells exactly instead
-                wt, whit, wcell = self._walk(px[walk], py[walk], dx[walk], dy[walk],
-                                             inv_x[walk], inv_y[walk], cx[walk], cy[walk],
-                                             t0[walk], tend[walk])
+                kw = min(WALK_MAX, max(WALK_MIN, WALK_BUDGET // walk.size))
+                wt, whit, wcell = self._walk(k[:, walk], cx[walk], cy[walk], t0[walk], kw)
                 t[walk] = wt
                 if whit.any():
                     hw = walk[whit]
                     rng[live[hw]] = wt[whit] * res
                     cell[live[hw]] = wcell[whit]
                     hit[hw] = True
-            keep = ~hit & (t < tend)
+            keep = t < tend
+            keep &= ~hit
             if not keep.all():
-                live, t, tend = live[keep], t[keep], tend[keep]
-                px, py, dx, dy = px[keep], py[keep], dx[keep], dy[keep]
-                inv_x, inv_y, offx, offy = inv_x[keep], inv_y[keep], offx[keep], offy[keep]
+                live, t, k = live[keep], t[keep], k[:, keep]
         return rng, cell
 
-
-    def _walk(self, px, py, dx, dy, inv_x, inv_y, cx, cy, tcur, tend):
-        """An exact cell walk of WALK_CELLS x- and WALK_CELLS y-boundary crossings at once.
+    def _walk(self, k, cx, cy, tcur, kw):
+        """An exact cell walk of kw x- and kw y-boundary crossings at once.
 
         The crossings of x = integer and y = integer lines are known in closed form; merged
         every crossing before the earlier of the two last ones is present, and the point
         just past each crossing lies in the cell entered there; the earliest occupied one is
-        the hit. Returns the new
-        t (the entry of the first occupied cell on a hit), the hit flags and the hit cells."""
-        s = self.spec
-        k = _WALK_K[None, :]
-        sx = np.where(dx >= 0, 1.0, -1.0)[:, None]
-        sy = np.where(dy >= 0, 1.0, -1.0)[:, None]
-        bx = (cx + (dx >= 0))[:, None] + k * sx
-        by = (cy + (dy >= 0))[:, None] + k * sy
-        tx = (bx - px[:, None]) * inv_x[:, None]
-        ty = (by - py[:, None]) * inv_y[:, None]
+        the hit. Returns the new t (the entry of the first occupied cell on a hit), the hit
+        flags and the hit cells."""
+        px, py, dx, dy, inv_x, inv_y, offx, offy, sx, sy, tend = (
+            v[:, None] for v in k[:_N])
+        steps = np.arange(kw, dtype=float)[None, :]
+        tt = np.empty((len(cx), 2 * kw))
+        tx, ty = tt[:, :kw], tt[:, kw:]
+        np.multiply(steps, sx, out=tx)
+        tx += (cx[:, None] + offx) - px
+        tx *= inv_x
+        np.multiply(steps, sy, out=ty)
+        ty += (cy[:, None] + offy) - py
+        ty *= inv_y
         lim = np.minimum(tx[:, -1], ty[:, -1])
-        tt = np.concatenate((tx, ty), axis=1)
-        valid = (tt <= lim[:, None]) & (tt < tend[:, None])
+        valid = tt <= lim[:, None]
+        valid &= tt < tend
         # invalid crossings look at the current cell (always inside the grid: tend stops
         # short of the grid's edge)
-        tn = np.where(valid, tt, tcur[:, None]) + NUDGE
-        qi = (np.floor(py[:, None] + dy[:, None] * tn).astype(np.int64) * s.cols
-              + np.floor(px[:, None] + dx[:, None] * tn).astype(np.int64))
-        occ = (self._flat[qi] == OCCUPIED) & valid
+        tn = np.where(valid, tt, tcur[:, None])
+        tn += NUDGE
+        qy = dy * tn
+        qy += py
+        qi = np.floor(qy, out=qy)
+        qi *= self.spec.cols
+        qx = np.multiply(dx, tn, out=tn)
+        qx += px
+        qi += np.floor(qx, out=qx)
+        qi = qi.astype(np.intp)
+        occ = self._flat[qi] == OCCUPIED
+        occ &= valid
         # the first occupied cell entered is the one with the earliest entry time
-        first = np.where(occ, tt, np.inf).argmin(axis=1)
-        rows = np.arange(len(px))
-        hit = occ[rows, first]
-        t = np.where(hit, tt[rows, first], lim + NUDGE)
+        tt[~occ] = np.inf
+        first = tt.argmin(axis=1)
+        rows = np.arange(len(cx))
+        tf = tt[rows, first]
+        hit = tf < np.inf
+        t = np.where(hit, tf, lim + NUDGE)
         return t, hit, qi[rows, first]
 
 
