@@ -100,6 +100,7 @@ class World:
             self._build(ent, None, None, base_dir)
         self._build_grid()
         self.warnings = self.warnings + parsed.unused_warnings()
+        self._half_diags = np.array([r.half_diag for r in self.robots])
         self._prepare_rays()
 
     # ---- loading -------------------------------------------------------------------------
@@ -198,7 +199,9 @@ class World:
             counts = [g.samples for _, g in members]
             local = np.concatenate([g.local_angles() for _, g in members])
             rmax = np.concatenate([np.full(g.samples, g.range_max) for _, g in members])
-            self._ray_groups.append((field, members, np.array(counts), local, rmax))
+            # only a robot's heading changes: the beams' directions are rotations of these
+            trig = (np.cos(local), np.sin(local))
+            self._ray_groups.append((field, members, np.array(counts), local, rmax, trig))
 
     # ---- the interface -------------------------------------------------------------------
     def occupancy(self):
@@ -266,12 +269,14 @@ class World:
         if not r.obstacle_return:
             return False
         mine = None
-        for o in self.robots:
+        # every other body's centre at once; only the near ones are looked at one by one
+        xy = np.array([o.pose[:2] for o in self.robots])
+        near = np.hypot(xy[:, 0] - pose[0], xy[:, 1] - pose[1]) <= (
+            r.half_diag + self._half_diags + 2 * res)
+        for j in np.flatnonzero(near):
+            o = self.robots[j]
             if o is r or not o.obstacle_return or not kinematics.z_overlap(r.z_range,
                                                                            o.z_range):
-                continue
-            if math.hypot(o.pose[0] - pose[0], o.pose[1] - pose[1]) > (
-                    r.half_diag + o.half_diag + 2 * res):
                 continue
             if mine is None:
                 mine = r.corners(pose)
@@ -283,7 +288,7 @@ class World:
 
     def cast_rays(self):
         """Fills every ranger's ranges and intensities from the current poses."""
-        for field, members, counts, local, rmax in self._ray_groups:
+        for field, members, counts, local, rmax, (cl, sl) in self._ray_groups:
             org = np.array([kinematics.compose(r.pose, (g.pose[0], g.pose[1], g.pose[3]))
                             for r, g in members])
             ox = np.repeat(org[:, 0], counts)
@@ -292,7 +297,11 @@ class World:
             noisy = [g for _, g in members if any(g.noise)]
             if noisy:
                 ang = ang + self._angle_noise(members, counts)
-            rng, cell = field.march(ox, oy, ang, rmax)
+                rng, cell = field.march(ox, oy, ang, rmax)
+            else:
+                cy = np.repeat(np.cos(org[:, 2]), counts)
+                sy = np.repeat(np.sin(org[:, 2]), counts)
+                rng, cell = field.march_dir(ox, oy, cy * cl - sy * sl, sy * cl + cy * sl, rmax)
             if field.labels is None:
                 inten = np.where(np.isfinite(rng), self._statics[field.members[0]].ranger_return
                                  if field.members else 0.0, 0.0)
