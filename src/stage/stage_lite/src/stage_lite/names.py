@@ -7,8 +7,9 @@ one robot and no ``-u`` the names are relative (``odom``, ``base_scan``), so the
 namespace applies. Several rangers on one robot are ``base_scan_<k>`` and
 ``base_laser_link_<k>``, and these per-device names are always absolute: with one robot and
 no ``-u`` they are ``/base_scan_<k>`` and ``/base_laser_link_<k>`` (mapName's device form puts
-a '/' before them even when the robot's other names are relative). Frame ids are the same strings (the leading '/' that tf2 rejects,
-stage_ros #68/#69); tf2_frames=True drops it, the opt-in fix.
+a '/' before them even when the robot's other names are relative). Frame ids are the same
+strings (the leading '/' that tf2 rejects, stage_ros #68/#69); tf2_frames=True drops it, the
+opt-in fix. The laser frames hang on base_link in the tf tree.
 """
 from dataclasses import dataclass
 

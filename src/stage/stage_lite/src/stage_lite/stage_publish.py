@@ -5,6 +5,9 @@ and arrays, only for topics that have subscribers, and written by
 course_common.rospy_internals.write_frame (no message objects, no rospy send queues).
 collect() runs under the node's lock (it reads the world); send() runs outside it.
 """
+import time
+
+import rosgraph
 import rospy
 from course_common.rospy_internals import has_subscribers, tick_publisher, write_frame
 from geometry_msgs.msg import Twist
@@ -106,17 +109,53 @@ class StepOutput:
         self.tf_pub = tick_publisher('/tf', TFMessage)
         self.robots = [RobotOutput(i, n, r, params, on_cmd_vel)
                        for i, (n, r) in enumerate(zip(names, world.robots, strict=True))]
+        self.publish_stall = params.publish_stall
+        # Every robot's per-step publishers: one any() over them per step lets a step with
+        # no robot topic subscribed (the flat-out benchmark) skip the loop over the robots.
+        self._robot_pubs = [pub for output in self.robots
+                            for pub in (output.odom_pub, output.truth_pub, *output.scan_pubs)]
+
+    def publishers(self):
+        """Every per-step publisher (the global ones, then each robot's)."""
+        pubs = [self.clock_pub, self.tf_pub]
+        for output in self.robots:
+            pubs.extend((output.odom_pub, output.truth_pub, *output.scan_pubs))
+        return pubs
+
+    def wait_for_waiting_subscribers(self, timeout_s, poll_s=0.002):
+        """Wait (at most timeout_s) until the subscribers that the master already lists for
+        our topics have connected, so that the first step reaches them. True if they all did.
+
+        A subscriber connects only after the master has told it about the new publisher:
+        without this wait, a node that was there first sees the second step first.
+        """
+        me = rospy.get_name()
+        try:
+            _, subscribed, _ = rosgraph.Master(me).getSystemState()
+        except (OSError, rosgraph.MasterError):
+            return False
+        waiting = {topic: sum(1 for node in nodes if node != me) for topic, nodes in subscribed}
+        wanted = [(pub, waiting.get(pub.resolved_name, 0)) for pub in self.publishers()]
+        deadline = time.monotonic() + timeout_s
+        while any(pub.get_num_connections() < count for pub, count in wanted):
+            if time.monotonic() >= deadline:
+                return False
+            time.sleep(poll_s)
+        return True
 
     def collect(self, world, stamp):
         """(frames, stalls) of this step: [(publisher, frame)], [(publisher, Bool value)]."""
         secs, nsecs = stamp
         frames = []
         stalls = []
-        for output, robot in zip(self.robots, world.robots, strict=True):
-            output.collect(robot, secs, nsecs, frames)
-            stall = output.stall_changed(robot)
-            if stall is not None:
-                stalls.append((output.stall_pub, stall))
+        if any(map(has_subscribers, self._robot_pubs)):
+            for output, robot in zip(self.robots, world.robots, strict=True):
+                output.collect(robot, secs, nsecs, frames)
+        if self.publish_stall:
+            for output, robot in zip(self.robots, world.robots, strict=True):
+                stall = output.stall_changed(robot)
+                if stall is not None:
+                    stalls.append((output.stall_pub, stall))
         if has_subscribers(self.tf_pub):
             # One message for every robot's transforms (stageros sends one per transform).
             packed = []

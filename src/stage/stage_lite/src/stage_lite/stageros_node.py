@@ -36,12 +36,14 @@ import sys
 import threading
 import time
 
+import rosgraph
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.rospy_internals import cheap_rosout
 
 from .names import all_robot_names, shared_namespaces
 from .pacing import SimClock, Throttle, Watchdog, check_speedup
+from .rospy_clock import drop_own_clock_subscription, set_own_time
 from .stage_publish import StepOutput
 from .stage_services import StageServices
 from .stageros_args import ArgsError, parse_args
@@ -88,7 +90,8 @@ class StageNode:
         with self.lock:
             self.world.step()
             self.clock.tick()
-            frames, stalls = self.output.collect(self.world, self.clock.stamp())
+            stamp = self.clock.stamp()
+            frames, stalls = self.output.collect(self.world, stamp)
             self.services.after_step()
             # After collecting: the odom of this step still shows the command it moved with,
             # as in stageros, where SetSpeed(0) takes effect at the next world update.
@@ -96,6 +99,7 @@ class StageNode:
                 self.world.stop_all()
             now_s = self.clock.now_s
         self.output.send(frames, stalls)
+        set_own_time(*stamp)
         return now_s
 
     def describe(self):
@@ -122,20 +126,48 @@ def _fatal(text):
     sys.exit(1)
 
 
-def load_world_or_exit(path):
-    """stage_lite's world, or a FATAL line naming the file (and line) and exit 1."""
-    from .world import WorldError, load_world  # numpy and the model after the command line
-    if not os.path.isfile(path):
-        _fatal('The world file %s does not exist.' % path)
-    rospy.set_param('/use_sim_time', True)  # before loading: nodes starting meanwhile see it
+class WorldLoader(threading.Thread):
+    """Loads the world file in a thread, while rospy registers the node with the master.
+
+    Both take a while at start (numpy, the floor plan and its distance field; XML-RPC calls
+    to the master), and the one waits on sockets while the other computes. An error becomes
+    one line (``error``) for the FATAL log, never a traceback.
+    """
+
+    def __init__(self, path):
+        super().__init__(name='stageros_world_load', daemon=True)
+        self.path = path
+        self.world = None
+        self.error = None
+
+    def run(self):
+        from .world import WorldError, load_world  # numpy and the model after the command line
+        try:
+            self.world = load_world(self.path)
+        except WorldError as err:
+            self.error = str(err)
+        except Exception as err:  # an unreadable or odd file: one FATAL line, never a traceback
+            self.error = '%s: could not load the world: %s' % (self.path, err)
+
+
+def set_use_sim_time_early():
+    """/use_sim_time true before init_node (and so before the world is loaded); False when
+    the master cannot be reached yet (then it is set after init_node, before the load)."""
     try:
-        world = load_world(path)
-    except WorldError as err:
-        _fatal(str(err))
-    except (OSError, ValueError) as err:
-        _fatal('%s: could not load the world: %s' % (path, err))
+        rosgraph.Master('/stageros').setParam('/use_sim_time', True)
+    except (OSError, rosgraph.MasterError):
+        return False
+    return True
+
+
+def world_or_exit(loader):
+    """The loaded world, or a FATAL line naming the file (and line) and exit 1."""
+    loader.join()
+    if loader.error is not None or loader.world is None:
+        _fatal(loader.error or '%s: could not load the world' % loader.path)
+    world = loader.world
     if not world.robots:
-        rospy.logwarn('%s: the world has no position models: no robot topics', path)
+        rospy.logwarn('%s: the world has no position models: no robot topics', world.path)
     for line in world.warnings:
         rospy.logwarn(line)
     return world
@@ -148,13 +180,25 @@ def main(argv=None):
     except ArgsError as err:
         sys.stderr.write('[FATAL] stageros: %s\n' % err)
         sys.exit(1)
+    exists = os.path.isfile(args.world_path)
+    # Load while rospy registers (start-up time); /use_sim_time first, so that nodes starting
+    # meanwhile see it (stage_ros #49). A missing world file sets nothing, as in stageros.
+    loader = WorldLoader(args.world_path)
+    if exists and set_use_sim_time_early():
+        loader.start()
     rospy.init_node('stageros')
     cheap_rosout()
+    drop_own_clock_subscription()  # this node is the clock: it sets rospy's time itself
     params = load_or_exit(load_params, 'stageros')
     for extra in args.ignored:
         rospy.logwarn('stageros: ignoring the argument %r (usage: stageros [-g] [-u] WORLD)',
                       extra)
-    world = load_world_or_exit(args.world_path)
+    if not exists:
+        _fatal('The world file %s does not exist.' % args.world_path)
+    if loader.ident is None:  # the master was not there before init_node
+        rospy.set_param('/use_sim_time', True)
+        loader.start()
+    world = world_or_exit(loader)
     try:
         node = StageNode(world, args, params)
     except ValueError as err:  # a bad speedup or interval_sim in the world file

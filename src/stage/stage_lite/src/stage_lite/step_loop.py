@@ -6,6 +6,10 @@ import rospy
 
 from .pacing import FLAT_OUT, Pacer
 
+#: Before the first step, the longest wall time given to subscribers that were already
+#: waiting for stageros's topics to connect (about one step at real time).
+FIRST_STEP_WAIT_S = 0.1
+
 
 class StepLoop:
     """Calls node.step() on the Pacer's schedule in its own thread until stopped or shut down.
@@ -38,6 +42,8 @@ class StepLoop:
     def _run(self):
         world = self.node.world
         quit_s = world.quit_time_s if world.quit_time_s > 0 else None
+        # So that nodes started before stageros get its first step (t = 0.1 s) too.
+        self.node.output.wait_for_waiting_subscribers(FIRST_STEP_WAIT_S)
         pacer = Pacer(world.interval_sim_s, self.speedup, time.monotonic())
         while not self._stop.is_set() and not rospy.is_shutdown():
             delay = pacer.delay(time.monotonic())

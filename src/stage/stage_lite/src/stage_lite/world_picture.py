@@ -9,7 +9,6 @@ import os
 from dataclasses import dataclass
 
 import numpy as np
-from PIL import Image, ImageDraw
 
 FREE_RGB = (255, 255, 255)
 WALL_RGB = (77, 77, 77)        # Stage's gray30 floor plan
@@ -87,6 +86,7 @@ def world_bounds(occupancy, points=()):
 
 def floor_image(view, occupancy):
     """An RGB image of the view with the occupancy grid's walls (grid row 0 = lowest y)."""
+    from PIL import Image  # only when a picture is drawn: stageros starts without PIL
     grid, ox, oy, res = occupancy
     w, h = view.size_px
     rows, cols = grid.shape
@@ -141,6 +141,7 @@ def _points(view, xy):
 
 def render(view, base, robots):
     """A copy of ``base`` (floor_image of view) with beams, trails and robots drawn on it."""
+    from PIL import ImageDraw  # only when a picture is drawn: stageros starts without PIL
     image = base.copy()
     draw = ImageDraw.Draw(image)
     for robot in robots:
