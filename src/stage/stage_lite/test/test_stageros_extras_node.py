@@ -26,6 +26,16 @@ from tf2_msgs.msg import TFMessage
 MODELS = ('robot0', 'robot1', 'robot2', 'robot3')
 DRIVE_MPS = 0.5
 CMD_PERIOD_S = 0.05  # wall s between commands: well inside the 1 s watchdog at 4 x real time
+WATCHDOG_NS = 1_000_000_000  # ~base_watchdog_timeout in stageros_extras.test
+STEP_NS = 100_000_000
+TURN_RADPS = 0.3
+#: A load spike longer than the watchdog (0.25 s of wall time at 4 x) stops every robot; the
+#: shared-watchdog test then commands again, at most this many times.
+WATCHDOG_ATTEMPTS = 3
+
+
+def _stamp_ns(msg):
+    return msg.header.stamp.secs * 1_000_000_000 + msg.header.stamp.nsecs
 
 
 class StagerosExtrasTest(unittest.TestCase):
@@ -91,6 +101,41 @@ class StagerosExtrasTest(unittest.TestCase):
         rospy.ServiceProxy('/reset_positions', Empty)()
         wait_for(lambda: stall.latest().data is False, EVENT_DEADLINE_S, 'the stall cleared')
         stall.close()
+        odom.close()
+
+    def test_one_watchdog_time_for_every_robot(self):
+        # stageros keeps one time of the last cmd_vel for all robots: robot1, commanded once,
+        # keeps turning while robot2 gets commands, and stops once nobody commands anything.
+        odom = Recorder('/robot1/odom', Odometry)
+        turn = rospy.Publisher('/robot1/cmd_vel', Twist, queue_size=10)
+        other = rospy.Publisher('/robot2/cmd_vel', Twist, queue_size=10)
+        wait_connected(turn, 'robot1/cmd_vel')
+        wait_connected(other, 'robot2/cmd_vel')
+        odom.wait_first()
+        kept_turning = False
+        for _ in range(WATCHDOG_ATTEMPTS):
+            odom.clear()
+            turn.publish(Twist(angular=Vector3(0, 0, TURN_RADPS)))
+            moving = odom.wait_where(lambda m: m.twist.twist.angular.z > 0, 'the turn')
+            # Without the shared time robot1 reads 0 at moving + watchdog + 1 step.
+            beyond_ns = _stamp_ns(moving) + WATCHDOG_NS + 5 * STEP_NS
+
+            def settled(beyond_ns=beyond_ns):
+                other.publish(Twist())
+                last = odom.latest()
+                if last.twist.twist.angular.z == 0 or _stamp_ns(last) >= beyond_ns:
+                    return last
+                return None
+            last = wait_for(settled, EVENT_DEADLINE_S, 'robot1 past its own watchdog time',
+                            poll_s=CMD_PERIOD_S)
+            if last.twist.twist.angular.z == TURN_RADPS:
+                kept_turning = True
+                break
+        self.assertTrue(kept_turning, 'robot1 stopped while robot2 was being commanded')
+        stopped = odom.wait_where(lambda m: _stamp_ns(m) > _stamp_ns(last)
+                                  and m.twist.twist.angular.z == 0, 'robot1 stopped')
+        self.assertGreater(_stamp_ns(stopped), _stamp_ns(last))
+        rospy.ServiceProxy('/reset_positions', Empty)()
         odom.close()
 
     def test_save_image_draws_the_robots_in_their_colours(self):
