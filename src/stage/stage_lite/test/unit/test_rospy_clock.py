@@ -1,6 +1,7 @@
 """Pins, without a master, the rospy internals stage_lite.rospy_clock relies on."""
 import inspect
 
+import pytest
 import rospy
 import rospy.impl.simtime
 import rospy.rostime
@@ -40,6 +41,7 @@ def test_a_subscription_is_unregistered_once():
         rospy.impl.simtime._clock_sub = saved
 
 
+@pytest.mark.filterwarnings('ignore:notifyAll:DeprecationWarning')  # rospy's own call
 def test_set_own_time_is_what_rospy_reports():
     pin(callable(getattr(rospy.rostime, '_set_rostime', None)), 'rospy.rostime._set_rostime',
         'exists')
