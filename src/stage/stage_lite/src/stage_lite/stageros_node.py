@@ -160,6 +160,16 @@ def set_use_sim_time_early():
     return True
 
 
+def set_use_sim_time_when_the_master_is_up(retry_s=0.5):
+    """/use_sim_time true once the master answers (a C++ node waits for it at start too)."""
+    while not rospy.is_shutdown():
+        try:
+            rospy.set_param('/use_sim_time', True)
+            return
+        except OSError:
+            time.sleep(retry_s)
+
+
 def world_or_exit(loader):
     """The loaded world, or a FATAL line naming the file (and line) and exit 1."""
     loader.join()
@@ -196,7 +206,7 @@ def main(argv=None):
     if not exists:
         _fatal('The world file %s does not exist.' % args.world_path)
     if loader.ident is None:  # the master was not there before init_node
-        rospy.set_param('/use_sim_time', True)
+        set_use_sim_time_when_the_master_is_up()
         loader.start()
     world = world_or_exit(loader)
     try:
