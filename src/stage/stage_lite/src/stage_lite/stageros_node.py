@@ -8,7 +8,8 @@ Per robot (``/robot_<N>/...`` with several robots or -u, relative with one):
               NaN or infinite commands are refused with a throttled WARN.
   Publishes   odom (nav_msgs/Odometry): odometry pose, commanded twist, frame odom;
               base_pose_ground_truth (nav_msgs/Odometry): world pose, finite-difference twist;
-              base_scan, or base_scan_<k> with several rangers (sensor_msgs/LaserScan);
+              base_scan, or base_scan_<k> with several rangers (sensor_msgs/LaserScan;
+              base_scan_<k> is absolute even for one robot: /base_scan_0);
               all queue 10, every step, stamped with sim time;
               stall (std_msgs/Bool, latched, on change) with ~publish_stall only.
 Global:
@@ -18,7 +19,8 @@ Global:
               and /tf_static map -> every robot's odom (identity).
   Services    reset_positions (std_srvs/Empty): every robot to its start pose, stall cleared;
               ~save_image (stage_lite/SaveImage): a PNG of the world, robots, beams, trails.
-  Sets        /use_sim_time true, before the world is loaded.
+  Sets        /use_sim_time true, before the world is loaded (before init_node when the
+              master is up); the node's own rospy time follows the sim time it publishes.
 Parameters (private):
   ~base_watchdog_timeout (float, 0.2, s of sim time): stop every robot when no cmd_vel came
       for that long (one time for all robots); <= 0 disables.
