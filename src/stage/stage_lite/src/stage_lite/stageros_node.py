@@ -1,0 +1,227 @@
+"""stageros: stage_ros 1.8.0's node on stage_lite's world (same names, types, frames, rates).
+
+Usage: ``rosrun stage_ros stageros [-g] [-u] WORLD`` (node name ``stageros``). The robots
+are the world's ``position`` models in file order; names: stage_lite.names.
+
+Per robot (``/robot_<N>/...`` with several robots or -u, relative with one):
+  Subscribes  cmd_vel (geometry_msgs/Twist, queue 10): x, y (omni only), angular z;
+              NaN or infinite commands are refused with a throttled WARN.
+  Publishes   odom (nav_msgs/Odometry): odometry pose, commanded twist, frame odom;
+              base_pose_ground_truth (nav_msgs/Odometry): world pose, finite-difference twist;
+              base_scan, or base_scan_<k> with several rangers (sensor_msgs/LaserScan;
+              base_scan_<k> is absolute even for one robot: /base_scan_0);
+              all queue 10, every step, stamped with sim time;
+              stall (std_msgs/Bool, latched, on change) with ~publish_stall only.
+Global:
+  Publishes   /clock (rosgraph_msgs/Clock) every step, never 0; /tf (tf2_msgs/TFMessage) every
+              step, one message: odom -> base_footprint -> base_link -> base_laser_link[_k]
+              per robot; with ~publish_map: /map (nav_msgs/OccupancyGrid, latched, frame map)
+              and /tf_static map -> every robot's odom (identity).
+  Services    reset_positions (std_srvs/Empty): every robot to its start pose, stall cleared;
+              ~save_image (stage_lite/SaveImage): a PNG of the world, robots, beams, trails.
+  Sets        /use_sim_time true, before the world is loaded (before init_node when the
+              master is up); the node's own rospy time follows the sim time it publishes.
+Parameters (private):
+  ~base_watchdog_timeout (float, 0.2, s of sim time): stop every robot when no cmd_vel came
+      for that long (one time for all robots); <= 0 disables.
+  ~speedup (float, the world's `speedup`, default 1): sim seconds per wall second; -1 = as
+      fast as possible.
+  ~tf2_frames (bool, false): frame ids without the leading '/' (tf2-clean).
+  ~publish_stall (bool, false), ~odom_child_frame (bool, false: odom child_frame_id =
+      base_footprint frame), ~publish_map (bool, false), ~map_resolution (float, 0.05, m),
+  ~image_path (str, ~/.ros/stage_lite.png): where ~save_image writes for an empty path.
+Command line: -g no window (without -g a Tk window opens when there is a display, else a
+WARN and headless), -u model names as namespaces; the world file last.
+"""
+import os
+import sys
+import threading
+import time
+
+import rosgraph
+import rospy
+from course_common.param_loader import load_or_exit
+from course_common.rospy_internals import cheap_rosout
+
+from .names import all_robot_names, shared_namespaces
+from .pacing import SimClock, Throttle, Watchdog, check_speedup
+from .rospy_clock import drop_own_clock_subscription, set_own_time
+from .stage_publish import StepOutput
+from .stage_services import StageServices
+from .stageros_args import ArgsError, parse_args
+from .stageros_params import load_params
+from .step_loop import StepLoop
+
+#: Throttle period of the WARN about bad commands (a bad publisher can repeat at any rate).
+BAD_INPUT_WARN_PERIOD_S = 1.0
+
+
+class StageNode:
+    """Owns the world, the ROS interface of every robot and the stepping thread."""
+
+    def __init__(self, world, args, params):
+        self.world = world
+        self.args = args
+        self.params = params
+        self.lock = threading.Lock()      # the world, the clock, the watchdog
+        self.clock = SimClock(world.interval_sim_s)
+        self.watchdog = Watchdog(params.base_watchdog_timeout_s)
+        self._warn = [Throttle(BAD_INPUT_WARN_PERIOD_S) for _ in world.robots]
+        self.names = all_robot_names([r.model_name for r in world.robots],
+                                     [len(r.rangers) for r in world.robots],
+                                     args.use_model_names, params.tf2_frames)
+        for line in shared_namespaces(self.names):
+            rospy.logwarn(line)
+        self.output = StepOutput(world, self.names, params, self.on_cmd_vel)
+        self.services = StageServices(self)
+        self.loop = StepLoop(self, world_speedup(world, params))
+
+    def on_cmd_vel(self, msg, index):
+        vx, vy, wz = msg.linear.x, msg.linear.y, msg.angular.z
+        try:
+            with self.lock:
+                self.world.set_command(index, vx, vy, wz)
+                self.watchdog.command(self.clock.now_ns)
+        except ValueError as err:
+            if self._warn[index].ready(time.monotonic()):
+                rospy.logwarn('Ignoring cmd_vel for %s: linear.x=%r, linear.y=%r, '
+                              'angular.z=%r (%s)', self.names[index].cmd_vel, vx, vy, wz, err)
+
+    def step(self):
+        """One world step and its messages; called by the StepLoop. Returns the sim time, s."""
+        with self.lock:
+            self.world.step()
+            self.clock.tick()
+            stamp = self.clock.stamp()
+            frames, stalls = self.output.collect(self.world, stamp)
+            self.services.after_step()
+            # After collecting: the odom of this step still shows the command it moved with,
+            # as in stageros, where SetSpeed(0) takes effect at the next world update.
+            if self.watchdog.expired(self.clock.now_ns):
+                self.world.stop_all()
+            now_s = self.clock.now_s
+        self.output.send(frames, stalls)
+        set_own_time(*stamp)
+        return now_s
+
+    def describe(self):
+        w = self.world
+        return ('%s: %d robot%s, interval_sim %g ms, %s, watchdog %s'
+                % (w.path, len(w.robots), '' if len(w.robots) == 1 else 's',
+                   w.interval_sim_s * 1000.0, self.loop.describe(),
+                   ('%g s' % self.params.base_watchdog_timeout_s)
+                   if self.params.base_watchdog_timeout_s > 0 else 'off'))
+
+
+def world_speedup(world, params):
+    """~speedup, else the world's `speedup` (ValueError if that one is bad)."""
+    if params.speedup is not None:
+        return params.speedup
+    try:
+        return check_speedup(world.speedup)
+    except ValueError as err:
+        raise ValueError('speedup %r: %s' % (world.speedup, err)) from None
+
+
+def _fatal(text):
+    rospy.logfatal(text)
+    sys.exit(1)
+
+
+class WorldLoader(threading.Thread):
+    """Loads the world file in a thread, while rospy registers the node with the master.
+
+    Both take a while at start (numpy, the floor plan and its distance field; XML-RPC calls
+    to the master), and the one waits on sockets while the other computes. An error becomes
+    one line (``error``) for the FATAL log, never a traceback.
+    """
+
+    def __init__(self, path):
+        super().__init__(name='stageros_world_load', daemon=True)
+        self.path = path
+        self.world = None
+        self.error = None
+
+    def run(self):
+        from .world import WorldError, load_world  # numpy and the model after the command line
+        try:
+            self.world = load_world(self.path)
+        except WorldError as err:
+            self.error = str(err)
+        except Exception as err:  # an unreadable or odd file: one FATAL line, never a traceback
+            self.error = '%s: could not load the world: %s' % (self.path, err)
+
+
+def set_use_sim_time_early():
+    """/use_sim_time true before init_node (and so before the world is loaded); False when
+    the master cannot be reached yet (then it is set after init_node, before the load)."""
+    try:
+        rosgraph.Master('/stageros').setParam('/use_sim_time', True)
+    except (OSError, rosgraph.MasterError):
+        return False
+    return True
+
+
+def set_use_sim_time_when_the_master_is_up(retry_s=0.5):
+    """/use_sim_time true once the master answers (a C++ node waits for it at start too)."""
+    while not rospy.is_shutdown():
+        try:
+            rospy.set_param('/use_sim_time', True)
+            return
+        except OSError:
+            time.sleep(retry_s)
+
+
+def world_or_exit(loader):
+    """The loaded world, or a FATAL line naming the file (and line) and exit 1."""
+    loader.join()
+    if loader.error is not None or loader.world is None:
+        _fatal(loader.error or '%s: could not load the world' % loader.path)
+    world = loader.world
+    if not world.robots:
+        rospy.logwarn('%s: the world has no position models: no robot topics', world.path)
+    for line in world.warnings:
+        rospy.logwarn(line)
+    return world
+
+
+def main(argv=None):
+    argv = rospy.myargv(argv=sys.argv if argv is None else argv)
+    try:
+        args = parse_args(argv[1:])
+    except ArgsError as err:
+        sys.stderr.write('[FATAL] stageros: %s\n' % err)
+        sys.exit(1)
+    exists = os.path.isfile(args.world_path)
+    # Load while rospy registers (start-up time); /use_sim_time first, so that nodes starting
+    # meanwhile see it (stage_ros #49). A missing world file sets nothing, as in stageros.
+    loader = WorldLoader(args.world_path)
+    if exists and set_use_sim_time_early():
+        loader.start()
+    rospy.init_node('stageros')
+    cheap_rosout()
+    drop_own_clock_subscription()  # this node is the clock: it sets rospy's time itself
+    params = load_or_exit(load_params, 'stageros')
+    for extra in args.ignored:
+        rospy.logwarn('stageros: ignoring the argument %r (usage: stageros [-g] [-u] WORLD)',
+                      extra)
+    if not exists:
+        _fatal('The world file %s does not exist.' % args.world_path)
+    if loader.ident is None:  # the master was not there before init_node
+        set_use_sim_time_when_the_master_is_up()
+        loader.start()
+    world = world_or_exit(loader)
+    try:
+        node = StageNode(world, args, params)
+    except ValueError as err:  # a bad speedup or interval_sim in the world file
+        _fatal('%s: %s' % (world.path, err))
+    rospy.loginfo('stageros: %s', node.describe())
+    node.loop.start()
+    try:
+        if args.gui:
+            from .gui import run_window  # tkinter only when a window is wanted
+            run_window(node)
+        rospy.spin()
+    finally:
+        node.loop.stop()
+        node.loop.join(1.0)

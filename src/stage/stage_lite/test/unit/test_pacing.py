@@ -1,0 +1,88 @@
+"""Sim time in whole ns, the wall-clock schedule, the shared watchdog and the throttle."""
+import math
+
+import pytest
+from stage_lite.pacing import (
+    FLAT_OUT,
+    MAX_LAG_STEPS,
+    Pacer,
+    SimClock,
+    Throttle,
+    Watchdog,
+    check_speedup,
+)
+
+TOL = 1e-9  # s: schedules are sums of a few floats
+
+
+def test_sim_clock_counts_whole_intervals_and_never_starts_at_zero_after_a_step():
+    clock = SimClock(0.1)
+    assert clock.now_ns == 0
+    assert [clock.tick() for _ in range(3)] == [100_000_000, 200_000_000, 300_000_000]
+    for _ in range(7):
+        clock.tick()
+    assert clock.stamp() == (1, 0)
+    assert clock.now_s == pytest.approx(1.0, abs=TOL)
+
+
+@pytest.mark.parametrize('interval', [0.0, -0.1, math.nan, math.inf])
+def test_sim_clock_refuses_bad_intervals(interval):
+    with pytest.raises(ValueError):
+        SimClock(interval)
+
+
+@pytest.mark.parametrize('value, expected', [(1, 1.0), (2.5, 2.5), (-1, FLAT_OUT), (0.01, 0.01)])
+def test_speedups(value, expected):
+    assert check_speedup(value) == expected
+
+
+@pytest.mark.parametrize('value', [0, -0.5, -2, math.nan, math.inf, True, '2', None])
+def test_bad_speedups(value):
+    with pytest.raises(ValueError):
+        check_speedup(value)
+
+
+@pytest.mark.parametrize('speedup, period', [(1.0, 0.1), (10.0, 0.01), (0.5, 0.2)])
+def test_pacer_spaces_steps_by_interval_over_speedup(speedup, period):
+    pacer = Pacer(0.1, speedup, now_s=100.0)
+    assert pacer.delay(100.0) == 0.0
+    pacer.stepped(100.0)
+    assert pacer.delay(100.0) == pytest.approx(period, abs=TOL)
+    pacer.stepped(100.0 + period)
+    assert pacer.delay(100.0 + period) == pytest.approx(period, abs=TOL)
+
+
+def test_pacer_flat_out_never_waits():
+    pacer = Pacer(0.1, FLAT_OUT, now_s=5.0)
+    for now in (5.0, 5.0, 5.001):
+        assert pacer.delay(now) == 0.0
+        pacer.stepped(now)
+
+
+def test_pacer_catches_up_a_little_then_restarts_its_schedule():
+    pacer = Pacer(0.1, 1.0, now_s=0.0)
+    pacer.stepped(0.25)  # a little late: the next step is due at 0.1 (catch up)
+    assert pacer.delay(0.25) == 0.0
+    pacer.stepped(10.0)  # far behind: start again from now
+    assert pacer.delay(10.0) == pytest.approx(0.0, abs=TOL)
+    assert MAX_LAG_STEPS >= 1
+
+
+@pytest.mark.parametrize('timeout, last, now, expired', [
+    (0.2, 0.1, 0.2, False),
+    (0.2, 0.1, 0.3, True),
+    (0.2, 0.5, 0.7, True),      # 0.7 - 0.5 is 0.19999.. in floats; whole ns make it 0.2
+    (0.2, 0.5, 0.6, False),
+    (0.0, 0.0, 100.0, False),   # disabled
+    (-1.0, 0.0, 100.0, False),
+])
+def test_watchdog(timeout, last, now, expired):
+    dog = Watchdog(timeout)
+    dog.command(round(last * 1e9))
+    assert dog.expired(round(now * 1e9)) is expired
+
+
+def test_throttle_lets_one_through_per_period():
+    throttle = Throttle(1.0)
+    assert [throttle.ready(t) for t in (0.0, 0.5, 0.99, 1.0, 1.5, 2.5)] == \
+        [True, False, False, True, False, True]

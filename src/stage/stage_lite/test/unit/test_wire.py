@@ -1,0 +1,107 @@
+"""The hand-packed frames deserialise, with genpy's own classes, to what stageros sends."""
+import math
+
+import numpy as np
+import pytest
+from nav_msgs.msg import OccupancyGrid, Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import LaserScan
+from stage_lite import map_msg, wire
+from tf2_msgs.msg import TFMessage
+
+TOL = 1e-12  # float64 fields round-trip exactly; float32 ones are compared with approx below
+
+
+def _body(frame):
+    (length,) = np.frombuffer(frame[:4], '<u4')
+    assert length == len(frame) - 4
+    return frame[4:]
+
+
+def test_clock():
+    msg = Clock().deserialize(_body(wire.clock_frame(12, 300_000_000)))
+    assert (msg.clock.secs, msg.clock.nsecs) == (12, 300_000_000)
+
+
+@pytest.mark.parametrize('child', ['', 'base_footprint'])
+def test_odometry(child):
+    frame = wire.odometry_frame(7, 3, 500, wire.string_bytes('/robot_0/odom'),
+                                wire.string_bytes(child), (-11.5, 23.5, math.pi / 2),
+                                (0.2, 0.0, -0.3))
+    msg = Odometry().deserialize(_body(frame))
+    assert (msg.header.seq, msg.header.stamp.secs, msg.header.stamp.nsecs) == (7, 3, 500)
+    assert (msg.header.frame_id, msg.child_frame_id) == ('/robot_0/odom', child)
+    p, q = msg.pose.pose.position, msg.pose.pose.orientation
+    assert (p.x, p.y, p.z) == (-11.5, 23.5, 0.0)
+    assert (q.x, q.y, q.z, q.w) == pytest.approx((0, 0, math.sqrt(0.5), math.sqrt(0.5)), abs=TOL)
+    t = msg.twist.twist
+    assert (t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z) == \
+        (0.2, 0.0, 0.0, 0.0, 0.0, -0.3)
+    assert not any(msg.pose.covariance) and not any(msg.twist.covariance)
+
+
+def test_laser_scan_fields_as_stage_fills_them():
+    fov, samples = math.radians(270.25), 1081
+    template = wire.ScanTemplate('/robot_1/base_laser_link', -fov / 2, fov / (samples - 1),
+                                 samples, 0.0, 30.0)
+    ranges = np.linspace(0.5, 30.0, samples, dtype=np.float32)
+    intensities = np.ones(samples, np.float32)
+    msg = LaserScan().deserialize(_body(template.frame(4, 1, 100_000_000, ranges, intensities)))
+    assert msg.header.frame_id == '/robot_1/base_laser_link'
+    assert msg.angle_min == pytest.approx(-2.35838, abs=1e-5)
+    assert msg.angle_max == pytest.approx(2.35838, abs=1e-5)
+    assert msg.angle_increment == pytest.approx(0.00436736, abs=1e-8)
+    assert (msg.time_increment, msg.scan_time, msg.range_min, msg.range_max) == (0, 0, 0, 30)
+    assert np.array_equal(np.asarray(msg.ranges, np.float32), ranges)
+    assert np.array_equal(np.asarray(msg.intensities, np.float32), intensities)
+
+
+def test_tf_message_holds_every_transform():
+    s = wire.string_bytes
+    transforms = [wire.transform_bytes(2, 0, s('/robot_0/odom'), s('/robot_0/base_footprint'),
+                                       1.0, 2.0, 0.0, 0.5),
+                  wire.transform_bytes(2, 0, s('/robot_0/base_link'),
+                                       s('/robot_0/base_laser_link'), 0.05, 0.0, 0.25, 0.0)]
+    msg = TFMessage().deserialize(_body(wire.tf_frame(transforms)))
+    assert [(t.header.frame_id, t.child_frame_id) for t in msg.transforms] == \
+        [('/robot_0/odom', '/robot_0/base_footprint'),
+         ('/robot_0/base_link', '/robot_0/base_laser_link')]
+    laser = msg.transforms[1].transform
+    assert (laser.translation.x, laser.translation.y, laser.translation.z) == (0.05, 0.0, 0.25)
+    assert msg.transforms[0].transform.rotation.z == pytest.approx(math.sin(0.25), abs=TOL)
+    assert msg.transforms[0].header.stamp.secs == 2
+
+
+def test_occupancy_grid_rows_start_at_the_lowest_y():
+    grid = np.zeros((4, 6), bool)
+    grid[0, 5] = True          # lowest row, last column
+    grid[3, 0] = True
+    cells, res, ox, oy = map_msg.map_grid((grid, -1.0, 2.0, 0.5), 0.5)
+    body = map_msg.grid_body(5, 0, 'map', cells, res, ox, oy)
+    msg = OccupancyGrid().deserialize(body)
+    assert (msg.info.width, msg.info.height, msg.info.resolution) == (6, 4, 0.5)
+    assert (msg.info.origin.position.x, msg.info.origin.position.y) == (-1.0, 2.0)
+    assert msg.info.origin.orientation.w == 1.0
+    data = np.asarray(msg.data).reshape(4, 6)
+    assert data[0, 5] == 100 and data[3, 0] == 100 and data.sum() == 200
+
+
+@pytest.mark.parametrize('factor, expected', [
+    (1, [[1, 0, 0], [0, 0, 0], [0, 0, 1]]),
+    (2, [[1, 0], [0, 1]]),
+    (3, [[1]]),
+])
+def test_coarsen_keeps_any_wall(factor, expected):
+    grid = np.array([[1, 0, 0], [0, 0, 0], [0, 0, 1]], bool)
+    assert map_msg.coarsen(grid, factor).astype(int).tolist() == expected
+
+
+@pytest.mark.parametrize('factor', [0, 1.5, -2])
+def test_coarsen_refuses_bad_factors(factor):
+    with pytest.raises(ValueError):
+        map_msg.coarsen(np.zeros((2, 2), bool), factor)
+
+
+def test_map_grid_refuses_a_bad_resolution():
+    with pytest.raises(ValueError):
+        map_msg.map_grid((np.zeros((2, 2), bool), 0, 0, 0.02), 0.0)
