@@ -18,7 +18,7 @@ import numpy as np
 
 try:  # scipy's chessboard distance transform; without it the march walks cell by cell
     from scipy.ndimage import distance_transform_cdt
-except ImportError:  # pragma: no cover - the workspace installs python3-scipy
+except ImportError:  # pragma: no cover - tools/debian-packages.txt installs python3-scipy
     distance_transform_cdt = None
 
 OCCUPIED = 0            # field code of an occupied cell; a free cell holds D >= 1

@@ -42,6 +42,7 @@ import rosgraph
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.rospy_internals import cheap_rosout
+from course_common.startup import init_node
 
 from .names import all_robot_names, shared_namespaces
 from .pacing import SimClock, Throttle, Watchdog, check_speedup
@@ -198,7 +199,7 @@ def main(argv=None):
     loader = WorldLoader(args.world_path)
     if exists and set_use_sim_time_early():
         loader.start()
-    rospy.init_node('stageros')
+    init_node('stageros')
     cheap_rosout()
     drop_own_clock_subscription()  # this node is the clock: it sets rospy's time itself
     params = load_or_exit(load_params, 'stageros')
