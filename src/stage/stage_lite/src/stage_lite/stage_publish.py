@@ -9,7 +9,8 @@ import time
 
 import rosgraph
 import rospy
-from course_common.rospy_internals import has_subscribers, tick_publisher, write_frame
+from course_common.publishers import unqueued_publisher
+from course_common.rospy_internals import has_subscribers, write_frame
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
@@ -29,9 +30,9 @@ class RobotOutput:
     def __init__(self, index, names, robot, params, on_cmd_vel):
         self.index = index
         self.names = names
-        self.odom_pub = tick_publisher(names.odom, Odometry)
-        self.truth_pub = tick_publisher(names.ground_truth, Odometry)
-        self.scan_pubs = [tick_publisher(topic, LaserScan) for topic in names.scans]
+        self.odom_pub = unqueued_publisher(names.odom, Odometry)
+        self.truth_pub = unqueued_publisher(names.ground_truth, Odometry)
+        self.scan_pubs = [unqueued_publisher(topic, LaserScan) for topic in names.scans]
         self.stall_pub = (rospy.Publisher(names.stall, Bool, queue_size=1, latch=True)
                           if params.publish_stall else None)
         self.last_stall = None
@@ -105,8 +106,8 @@ class StepOutput:
     """Every robot's output plus the global /clock and /tf."""
 
     def __init__(self, world, names, params, on_cmd_vel):
-        self.clock_pub = tick_publisher('/clock', Clock)
-        self.tf_pub = tick_publisher('/tf', TFMessage)
+        self.clock_pub = unqueued_publisher('/clock', Clock)
+        self.tf_pub = unqueued_publisher('/tf', TFMessage)
         self.robots = [RobotOutput(i, n, r, params, on_cmd_vel)
                        for i, (n, r) in enumerate(zip(names, world.robots, strict=True))]
         self.publish_stall = params.publish_stall
