@@ -63,10 +63,9 @@ class DeadlineLoop:
         self._call = call
         self._schedule = schedule
         self._what = what
-        self._stop_at_shutdown = stop_at_shutdown
-        self._clock = clock
-        self._sleep = sleep
         self._stop = threading.Event()
+        self._stop_at_shutdown = stop_at_shutdown
+        self._clock, self._sleep = clock, sleep
         self._thread = threading.Thread(target=self.run, name=name, daemon=True)
 
     def start(self):
