@@ -57,10 +57,10 @@ def main(argv=None):
         measure(argv[1], int(argv[2]))
         return
     repeats = int(argv[0]) if argv else 5
-    sys.path.insert(0, HERE)
-    import make_stage_worlds
     # Here, not at the top: the children import only the model, so their peak RSS is its own.
     from course_common.processes import run_to_exit
+    sys.path.insert(0, HERE)
+    import make_stage_worlds
     worlds = [('lesson', make_stage_worlds.LESSON)]
     with tempfile.TemporaryDirectory() as tmp:
         made = make_stage_worlds.write_worlds(tmp)
