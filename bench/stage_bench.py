@@ -8,24 +8,23 @@ with nothing subscribed but /clock:
 * real-time factor: simulated seconds (from /clock) per wall second over WINDOW_S;
 * CPU: utime + stime of the process over the same window, in cores;
 * peak RSS (VmHWM) at the end of the run;
-* start to every robot's first scan: from Popen (master up) until a scan of every robot has
+* start to every robot's first scan: from the spawn (master up) until a scan of every robot has
   arrived here (these subscribers are dropped before the window).
 Median of RUNS runs. Then, on the lesson world at real time (~speedup 1): CPU headless
 (-g) and with the Tk window on an Xvfb display (no -g). Prints a markdown table beside real
 Stage's figures (../shared/STAGE.md section 6, issue 18).
 """
 import os
-import socket
 import statistics
-import subprocess
 import sys
 import tempfile
 import threading
 import time
 
-import rosgraph
 import rospy
-from course_common.testing import wait_for
+from course_common.processes import peak_rss_mb
+from course_common.testing import Xvfb, cpu_ticks, spawn, wait_for
+from course_common.testing.master import Roscore
 from geometry_msgs.msg import Twist, Vector3
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
@@ -45,38 +44,19 @@ REFERENCE = {'lesson': (26.1, 1.0, 647), 20: (3.63, 1.0, 661), 50: (1.39, 1.0, 6
              100: (0.61, 1.0, 732)}
 REFERENCE_START_S = 2.1
 REFERENCE_WINDOW = (0.23, 760)
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(('localhost', 0))
-        return s.getsockname()[1]
+XVFB_SCREEN = (1280, 1024)  # px: room for the lesson's window
 
 
 def cpu_s(pid):
-    with open('/proc/%d/stat' % pid) as f:
-        fields = f.read().rsplit(')', 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / CLK_TCK
-
-
-def peak_rss_mb(pid):
-    with open('/proc/%d/status' % pid) as f:
-        for line in f:
-            if line.startswith('VmHWM:'):
-                return int(line.split()[1]) / 1024.0
-    return float('nan')
+    """CPU time (user + system) the process has used so far, s."""
+    return cpu_ticks(pid) / CLK_TCK
 
 
 class Bench:
     """Owns the roscore, this node's /clock subscriber and the stageros being measured."""
 
     def __init__(self):
-        self.port = free_port()
-        os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % self.port
-        self.devnull = open(os.devnull, 'w')  # noqa: SIM115 (closed in close())
-        self.core = subprocess.Popen(['roscore', '-p', str(self.port)], stdout=self.devnull,
-                                     stderr=self.devnull, start_new_session=True)
-        wait_for(rosgraph.Master('/stage_bench').is_online, START_DEADLINE_S, 'roscore')
+        self.core = Roscore().start()  # sets ROS_MASTER_URI here, for us and our children
         rospy.init_node('stage_bench', anonymous=True, disable_signals=True)
         self._lock = threading.Lock()
         self._clock = None
@@ -104,11 +84,10 @@ class Bench:
         args = ['rosrun', 'stage_ros', 'stageros', *([] if gui else ['-g']), world,
                 '_speedup:=%g' % speedup, '_base_watchdog_timeout:=0']
         start = time.monotonic()
-        proc = subprocess.Popen(args, stdout=self.devnull, stderr=self.devnull, env=env,
-                                start_new_session=True)
+        proc = spawn(args, env=env, stop_timeout_s=20.0)
         try:
             wait_for(lambda: len(self._scans) == robots, START_DEADLINE_S,
-                     'a scan of every robot', alive=lambda: proc.poll() is None)
+                     'a scan of every robot', alive=proc.alive)
             first_scans_s = time.monotonic() - start
             for sub in scan_subs:
                 sub.unregister()
@@ -129,12 +108,7 @@ class Bench:
             for pub in pubs:
                 pub.unregister()
         finally:
-            proc.send_signal(2)
-            try:
-                proc.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+            proc.stop()
         return result
 
     def _on_scan(self, _msg, index):
@@ -144,27 +118,12 @@ class Bench:
     def close(self):
         self.clock_sub.unregister()
         rospy.signal_shutdown('bench done')
-        os.killpg(self.core.pid, 2)
-        self.core.wait(timeout=20)
-        self.devnull.close()
+        self.core.stop()
 
 
 def _median_runs(bench, world, robots):
     runs = [bench.run(world, robots) for _ in range(RUNS)]
     return tuple(statistics.median(r[k] for r in runs) for k in range(4))
-
-
-def _xvfb():
-    """(Xvfb process, env with its DISPLAY) on a free display number."""
-    for number in range(90, 140):
-        if not os.path.exists('/tmp/.X11-unix/X%d' % number) \
-                and not os.path.exists('/tmp/.X%d-lock' % number):
-            proc = subprocess.Popen(['Xvfb', ':%d' % number, '-screen', '0', '1280x1024x24',
-                                     '-nolisten', 'tcp'], stdout=subprocess.DEVNULL,
-                                    stderr=subprocess.DEVNULL)
-            wait_for(lambda n=number: os.path.exists('/tmp/.X11-unix/X%d' % n), 20, 'Xvfb')
-            return proc, dict(os.environ, DISPLAY=':%d' % number)
-    raise RuntimeError('no free X display number')
 
 
 def main():
@@ -179,13 +138,9 @@ def main():
             rows.append((key, robots, _median_runs(bench, path, robots)))
         print('bench: lesson at real time, headless and with the window', flush=True)
         headless = bench.run(LESSON, 4, speedup=1.0, window_s=REAL_TIME_WINDOW_S)
-        xvfb, env = _xvfb()
-        try:
-            window = bench.run(LESSON, 4, speedup=1.0, gui=True, env=env,
-                               window_s=REAL_TIME_WINDOW_S)
-        finally:
-            xvfb.terminate()
-            xvfb.wait(timeout=20)
+        with Xvfb(XVFB_SCREEN) as xvfb:
+            window = bench.run(LESSON, 4, speedup=1.0, gui=True,
+                               env={'DISPLAY': xvfb.display}, window_s=REAL_TIME_WINDOW_S)
     finally:
         bench.close()
     print()

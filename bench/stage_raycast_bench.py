@@ -13,7 +13,6 @@ import json
 import os
 import resource
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -21,6 +20,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 STEPS = 50
 WARMUP = 5
+CHILD_TIMEOUT_S = 900.0  # one world's child: 100 erratics on a loaded machine take minutes
 
 
 def measure(path, repeats):
@@ -57,6 +57,8 @@ def main(argv=None):
         measure(argv[1], int(argv[2]))
         return
     repeats = int(argv[0]) if argv else 5
+    # Here, not at the top: the children import only the model, so their peak RSS is its own.
+    from course_common.processes import run_to_exit
     sys.path.insert(0, HERE)
     import make_stage_worlds
     worlds = [('lesson', make_stage_worlds.LESSON)]
@@ -67,8 +69,10 @@ def main(argv=None):
               ' | Mrays/s | peak RSS MB |')
         print('|---|---|---|---|---|---|---|---|---|')
         for name, path in worlds:
-            out = subprocess.run([sys.executable, __file__, '--child', path, str(repeats)],
-                                 check=True, capture_output=True, text=True).stdout
+            code, out = run_to_exit([sys.executable, __file__, '--child', path, str(repeats)],
+                                    CHILD_TIMEOUT_S)
+            if code != 0:
+                raise SystemExit('%s: the measuring child failed (%s):\n%s' % (name, code, out))
             r = json.loads(out.strip().splitlines()[-1])
             print('| %s | %d | %d | %.2f | %.1f | %.1f | %.1f | %.1f | %.0f |' % (
                 name, r['robots'], r['beams'], r['load_s'], r['step_s'] * 1e3,

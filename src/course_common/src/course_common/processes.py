@@ -2,7 +2,7 @@
 
 Used by the tools (convoy_demo's roslaunch and rosbag record, rviz_snapshot's rviz and Xvfb),
 the rostest nodes and the benchmarks. Also what a benchmark reads of a process in /proc:
-cpu_ticks and rss_mb.
+cpu_ticks, rss_mb and peak_rss_mb.
 """
 import codecs
 import contextlib
@@ -50,10 +50,11 @@ def cpu_ticks(pid):
         return stat_cpu_ticks(stat.read())
 
 
-def status_rss_mb(status_text):
-    """VmRSS of a /proc/<pid>/status text in MB (MiB), or None when it has none (a zombie)."""
+def status_rss_mb(status_text, field='VmRSS'):
+    """VmRSS (or another kB field, such as the peak VmHWM) of a /proc/<pid>/status text in MB
+    (MiB), or None when it has none (a zombie)."""
     for line in status_text.splitlines():
-        if line.startswith('VmRSS:'):
+        if line.startswith(field + ':'):
             return int(line.split()[1]) / 1024.0
     return None
 
@@ -62,6 +63,12 @@ def rss_mb(pid):
     """The process's resident set size in MB (MiB), or None when it has none."""
     with open('/proc/%d/status' % pid) as status:
         return status_rss_mb(status.read())
+
+
+def peak_rss_mb(pid):
+    """The process's peak resident set size so far (VmHWM) in MB (MiB), or None."""
+    with open('/proc/%d/status' % pid) as status:
+        return status_rss_mb(status.read(), 'VmHWM')
 
 
 class ChildProcess:

@@ -13,6 +13,7 @@ import pytest
 from course_common.processes import (
     ChildProcess,
     cpu_ticks,
+    peak_rss_mb,
     rss_mb,
     run_to_exit,
     spawn,
@@ -65,17 +66,24 @@ def test_stat_cpu_ticks_rejects_a_short_line():
         stat_cpu_ticks('1 (sh) S 0')
 
 
-@pytest.mark.parametrize('text, mb', [
-    ('Name:\tsh\nVmRSS:\t    2048 kB\nThreads:\t1\n', 2.0),
-    ('Name:\tzombie\nState:\tZ\n', None),
+STATUS = 'Name:\tsh\nVmHWM:\t    3072 kB\nVmRSS:\t    2048 kB\nThreads:\t1\n'
+
+
+@pytest.mark.parametrize('text, field, mb', [
+    (STATUS, 'VmRSS', 2.0),
+    (STATUS, 'VmHWM', 3.0),  # the peak, a line before VmRSS
+    ('Name:\tzombie\nState:\tZ\n', 'VmRSS', None),
+    ('Name:\tzombie\nState:\tZ\n', 'VmHWM', None),
 ])
-def test_status_rss_mb(text, mb):
-    assert status_rss_mb(text) == (None if mb is None else pytest.approx(mb, abs=1e-9))
+def test_status_rss_mb(text, field, mb):
+    assert status_rss_mb(text, field) == (None if mb is None else pytest.approx(mb, abs=1e-9))
 
 
 def test_this_process_has_cpu_ticks_and_memory():
     assert cpu_ticks(os.getpid()) >= 0
-    assert rss_mb(os.getpid()) > 1.0  # a Python interpreter is several MB
+    rss = rss_mb(os.getpid())
+    assert rss > 1.0  # a Python interpreter is several MB
+    assert peak_rss_mb(os.getpid()) >= rss  # read after: the peak so far is never below
 
 
 def test_lines_are_read_as_they_come_and_exit_code_is_returned():

@@ -1,16 +1,12 @@
 #!/usr/bin/env python3
 """stageros refuses bad command lines, world files and parameters: one FATAL line, exit 1."""
-import unittest
 
-import rospy
 import rostest
-from stage_support import run_stageros, world
+from stage_support import StageTestCase, run_stageros, world
 
 
-class StagerosBadInputTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node('stageros_bad_input_test')
+class StagerosBadInputTest(StageTestCase):
+    NODE_NAME = 'stageros_bad_input_test'
 
     def _fails(self, args, *words, run=0):
         # A node name of its own: private parameters stay on the master after a run.

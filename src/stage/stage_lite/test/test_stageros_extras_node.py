@@ -2,7 +2,6 @@
 """stageros -u with the extras switched on: model names, tf2 frames, stall, /map, pictures."""
 import os
 import tempfile
-import unittest
 
 import numpy as np
 import rospy
@@ -15,6 +14,7 @@ from stage_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
     Recorder,
+    StageTestCase,
     topic_types,
     wait_connected,
     wait_for,
@@ -38,10 +38,8 @@ def _stamp_ns(msg):
     return msg.header.stamp.secs * 1_000_000_000 + msg.header.stamp.nsecs
 
 
-class StagerosExtrasTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node('stageros_extras_test')
+class StagerosExtrasTest(StageTestCase):
+    NODE_NAME = 'stageros_extras_test'
 
     def test_model_names_as_namespaces(self):
         def published():

@@ -1,7 +1,6 @@
 #!/usr/bin/env python3
 """stageros with four robots: what a user of stage_ros 1.8.0 sees through ROS."""
 import math
-import unittest
 
 import rospy
 import rostest
@@ -16,6 +15,7 @@ from stage_support import (
     START_DEADLINE_S,
     STEP_NS,
     Recorder,
+    StageTestCase,
     service_names,
     stamp_ns,
     topic_types,
@@ -36,10 +36,8 @@ def _xy(msg):
     return p.x, p.y
 
 
-class StagerosInterfaceTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node('stageros_interface_test')
+class StagerosInterfaceTest(StageTestCase):
+    NODE_NAME = 'stageros_interface_test'
 
     def test_names_and_types(self):
         expected = {'/clock': 'rosgraph_msgs/Clock', '/tf': 'tf2_msgs/TFMessage'}

@@ -1,9 +1,7 @@
 #!/usr/bin/env python3
 """stageros with one robot: relative names in the node's namespace, its window, ~speedup."""
 import time
-import unittest
 
-import rospy
 import rostest
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
@@ -12,6 +10,7 @@ from stage_support import (
     RANGE_TOL_M,
     START_DEADLINE_S,
     Recorder,
+    StageTestCase,
     service_names,
     stamp_ns,
     topic_types,
@@ -27,10 +26,12 @@ WALL_WINDOW_S = 2.0
 MIN_RATIO = 2.0
 
 
-class StagerosOneRobotTest(unittest.TestCase):
+class StagerosOneRobotTest(StageTestCase):
+    NODE_NAME = 'stageros_one_robot_test'
+
     @classmethod
     def setUpClass(cls):
-        rospy.init_node('stageros_one_robot_test')
+        super().setUpClass()
         cls.logs = Recorder('/rosout', Log)
 
     def test_relative_names_in_the_namespace(self):

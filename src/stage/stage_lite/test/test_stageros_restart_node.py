@@ -1,17 +1,14 @@
 #!/usr/bin/env python3
 """Kill and restart stageros under a running cmd_vel publisher: the team picks it up again."""
-import os
-import unittest
 
-import rospy
 import rostest
 from nav_msgs.msg import Odometry
 from stage_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
     Recorder,
+    StageTestCase,
     start_stageros,
-    stop_process,
     wait_for,
     world,
 )
@@ -20,10 +17,8 @@ START_X = 1.95
 MOVED_M = 0.05
 
 
-class StagerosRestartTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node('stageros_restart_test')
+class StagerosRestartTest(StageTestCase):
+    NODE_NAME = 'stageros_restart_test'
 
     def _run_once(self, *args, env=None):
         odom = Recorder('/robot_0/odom', Odometry, keep=1)
@@ -31,20 +26,19 @@ class StagerosRestartTest(unittest.TestCase):
                               '_base_watchdog_timeout:=1.0', env=env)
         try:
             first = wait_for(odom.latest, START_DEADLINE_S, 'the first odom of a new stageros',
-                             alive=lambda: proc.poll() is None)
+                             alive=proc.alive)
             self.assertLess(first.pose.pose.position.x, START_X + MOVED_M,
                             'a new stageros starts from the start pose')
             wait_for(lambda: odom.latest().pose.pose.position.x > START_X + MOVED_M,
                      EVENT_DEADLINE_S, 'robot_0 driven by the running publisher',
-                     alive=lambda: proc.poll() is None)
+                     alive=proc.alive)
         finally:
-            code = stop_process(proc)
+            code = proc.stop()
             odom.close()
         return code, proc
 
     def test_kill_and_restart_under_a_running_publisher(self):
-        env = {k: v for k, v in os.environ.items() if k != 'DISPLAY'}
-        code, proc = self._run_once(env=env)   # no -g, no display: WARN and headless
+        code, proc = self._run_once(env={'DISPLAY': None})  # no -g, no display: WARN, headless
         self.assertEqual(code, 0, 'stageros ends cleanly on SIGINT')
         self.assertIn('no display', proc.output())
         code, _ = self._run_once('-g')

@@ -1,12 +1,17 @@
 #!/usr/bin/env python3
 """stageros with one robot and two rangers: relative robot names, absolute per-device names."""
-import unittest
 
-import rospy
 import rostest
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
-from stage_support import RANGE_TOL_M, START_DEADLINE_S, Recorder, topic_types, wait_for
+from stage_support import (
+    RANGE_TOL_M,
+    START_DEADLINE_S,
+    Recorder,
+    StageTestCase,
+    topic_types,
+    wait_for,
+)
 from tf2_msgs.msg import TFMessage
 
 NS = '/duo_ns/'
@@ -17,10 +22,8 @@ LASER_FRAMES = ('/base_laser_link_0', '/base_laser_link_1')
 AHEAD_M = (1.95, 3.70)
 
 
-class StagerosTwoRangersTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node('stageros_two_rangers_test')
+class StagerosTwoRangersTest(StageTestCase):
+    NODE_NAME = 'stageros_two_rangers_test'
 
     def test_scan_topics_are_absolute_and_the_rest_relative(self):
         def published():

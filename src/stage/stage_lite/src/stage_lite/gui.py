@@ -5,10 +5,10 @@ in the main thread from snapshots taken under the node's lock; the simulation st
 step thread. With no display (or no Tk) the node WARNs and runs headless, where Stage would
 fail to open its window.
 """
-import contextlib
 import os
 
 import rospy
+from course_common.tk_window import open_root, show_picture
 
 from . import world_picture as picture
 
@@ -33,53 +33,28 @@ def _window_size(world):
 
 def run_window(node):
     """Show the window until ROS shuts down or it is closed; False if none could be opened."""
-    if not os.environ.get('DISPLAY'):
-        rospy.logwarn('stageros: no display (DISPLAY is not set): running without a window '
-                      '(use -g to ask for that)')
+    root = open_root('stageros: no display (DISPLAY is not set): running without a window '
+                     '(use -g to ask for that)',
+                     'stageros: the window could not be opened (%s): running without one')
+    if root is None:
         return False
-    try:
-        import tkinter
-
-        from PIL import ImageTk
-        root = tkinter.Tk()
-    except Exception as exc:
-        rospy.logwarn('stageros: the window could not be opened (%s): running without one', exc)
-        return False
-
     world = node.world
     width, height = _window_size(world)
     occupancy = world.occupancy()
     view = picture.fit_view(picture.world_bounds(occupancy, [r.start_pose for r in world.robots]),
                             width, height)
     base = picture.floor_image(view, occupancy)
-    root.title('Stage: %s' % os.path.basename(world.path))
-    root.resizable(False, False)
-    photo = ImageTk.PhotoImage(base)
-    label = tkinter.Label(root, image=photo, borderwidth=0, highlightthickness=0)
-    label.pack()
     state = {'step': None}
 
-    def on_close():
-        rospy.signal_shutdown('window closed')
-        root.quit()
-
-    def refresh():
-        if rospy.is_shutdown():
-            root.quit()
-            return
+    def next_image():
         with node.lock:
             step = node.clock.steps
             robots = node.services.robot_views() if step != state['step'] else None
-        if robots is not None:  # redraw only when the world moved on
-            state['step'] = step
-            photo.paste(picture.render(view, base, robots))
-        root.after(REFRESH_MS, refresh)
+        if robots is None:  # redraw only when the world moved on
+            return None
+        state['step'] = step
+        return picture.render(view, base, robots)
 
-    root.protocol('WM_DELETE_WINDOW', on_close)
-    root.after(0, refresh)
-    try:
-        root.mainloop()
-    finally:
-        with contextlib.suppress(Exception):
-            root.destroy()
+    show_picture(root, 'Stage: %s' % os.path.basename(world.path), base, next_image,
+                 REFRESH_MS, 0, rospy.is_shutdown)
     return True

@@ -10,6 +10,8 @@
 """
 import math
 
+from course_common.deadline_loop import Deadlines
+
 #: Flat out: no pacing, the next step starts when the last one is published.
 FLAT_OUT = -1.0
 #: If the loop falls this many periods behind (a loaded machine, a suspended process) it
@@ -52,26 +54,18 @@ class SimClock:
         return divmod(self.now_ns, 1_000_000_000)
 
 
-class Pacer:
-    """Wall-clock deadlines of the steps: one every interval_s / speedup seconds."""
+class Pacer(Deadlines):
+    """Wall-clock deadlines of the steps: one every interval_s / speedup seconds, the first
+    at now_s; flat out, each step as soon as the last one ended."""
 
     def __init__(self, interval_s, speedup, now_s):
         check_speedup(speedup)
-        self.period_s = 0.0 if speedup == FLAT_OUT else interval_s / speedup
-        self.next_s = now_s
-
-    def delay(self, now_s):
-        """Seconds to wait before the next step may run (0.0 when it is due)."""
-        return max(0.0, self.next_s - now_s)
+        super().__init__(0.0 if speedup == FLAT_OUT else interval_s / speedup, now_s,
+                         MAX_LAG_STEPS)
 
     def stepped(self, now_s):
         """Record that a step ran at now_s; schedules the next one."""
-        if self.period_s == 0.0:
-            self.next_s = now_s
-            return
-        self.next_s += self.period_s
-        if now_s - self.next_s > MAX_LAG_STEPS * self.period_s:
-            self.next_s = now_s
+        self.done(now_s)
 
 
 class Watchdog:

@@ -1,8 +1,7 @@
 """stageros's services and latched extras: reset_positions, ~save_image, /map and trails."""
-import os
-
 import numpy as np
 import rospy
+from course_common.save_image import answer_save_image
 from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import OccupancyGrid
 from std_srvs.srv import Empty, EmptyResponse
@@ -72,16 +71,12 @@ class StageServices:
         return EmptyResponse()
 
     def handle_save_image(self, req):
-        path = req.path or self.node.params.image_path
-        try:
-            written = self.save_image(path)
-        except (OSError, ValueError) as exc:
-            rospy.logerr('Could not save the image to [%s]: %s', path, exc)
-            raise rospy.ServiceException('could not save the image: %s' % exc) from exc
-        rospy.loginfo('Saved the world to [%s]', written)
-        return SaveImageResponse(written)
+        return SaveImageResponse(answer_save_image(
+            req.path, self.node.params.image_path, self.save_image, 'world',
+            'could not save the image'))
 
     def save_image(self, path):
+        """Writes the world's picture to path (absolute); returns the path written."""
         if self._image_base is None:
             occupancy = self.node.world.occupancy()
             starts = [r.start_pose for r in self.node.world.robots]
@@ -91,8 +86,7 @@ class StageServices:
         view, base = self._image_base
         with self.node.lock:
             robots = self.robot_views()
-        return picture.save_png(os.path.abspath(os.path.expanduser(path)),
-                                picture.render(view, base, robots))
+        return picture.save_png(path, picture.render(view, base, robots))
 
     # -------------------------------------------------------------- /map
     def _publish_map(self):

@@ -5,10 +5,8 @@ The window runs in the main thread and redraws at most every REFRESH_MS from sna
 the simulator; the simulation itself stays in the tick thread.
 """
 
-import contextlib
-import os
-
 import rospy
+from course_common.tk_window import open_root, show_picture
 
 from .picture import render
 
@@ -24,49 +22,23 @@ def run_window(sim, done):
     Returns True if the window ran, False (after a WARN) if it could not be opened, in which
     case the caller carries on headless.
     """
-    if not os.environ.get('DISPLAY'):
-        rospy.logwarn('~gui is true but DISPLAY is not set: running headless')
+    root = open_root('~gui is true but DISPLAY is not set: running headless',
+                     '~gui is true but the Tk window could not be opened (%s): '
+                     'running headless')
+    if root is None:
         return False
-    try:
-        import tkinter
-
-        from PIL import ImageTk
-        root = tkinter.Tk()
-    except Exception as exc:
-        rospy.logwarn('~gui is true but the Tk window could not be opened (%s): '
-                      'running headless', exc)
-        return False
-
-    root.title(TITLE)
-    root.resizable(False, False)
     pixels, poses = sim.snapshot()
     height, width = pixels.shape[:2]
-    photo = ImageTk.PhotoImage(render(pixels, poses))
-    label = tkinter.Label(root, image=photo, borderwidth=0, highlightthickness=0)
-    label.pack()
-    root.geometry('%dx%d' % (width, height))
     state = {'last': None}
 
-    def on_close():
-        rospy.signal_shutdown('window closed')
-        root.quit()
-
-    def refresh():
-        if done.is_set() or rospy.is_shutdown():
-            root.quit()
-            return
+    def next_image():
         key = sim.view_key()
-        if key != state['last']:  # copy and redraw only when something changed
-            state['last'] = key
-            pixels, poses = sim.snapshot()
-            photo.paste(render(pixels, poses))
-        root.after(REFRESH_MS, refresh)
+        if key == state['last']:  # copy and redraw only when something changed
+            return None
+        state['last'] = key
+        return render(*sim.snapshot())
 
-    root.protocol('WM_DELETE_WINDOW', on_close)
-    root.after(REFRESH_MS, refresh)
-    try:
-        root.mainloop()
-    finally:
-        with contextlib.suppress(Exception):
-            root.destroy()
+    show_picture(root, TITLE, render(pixels, poses), next_image, REFRESH_MS, REFRESH_MS,
+                 lambda: done.is_set() or rospy.is_shutdown(),
+                 geometry='%dx%d' % (width, height))
     return True

@@ -20,8 +20,8 @@ Parameters:
   ~save_image_on_shutdown (bool, default false): write ~image_path when the node shuts down.
 """
 
+import contextlib
 import math
-import os
 import threading
 import time
 
@@ -29,6 +29,7 @@ import rospy
 from course_common.arena import SPAWN_M
 from course_common.graph_names import graph_name_error
 from course_common.rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
+from course_common.save_image import answer_save_image, save_logged
 from course_common.startup import init_node
 from std_srvs.srv import Empty, EmptyResponse
 from turtlesim.srv import (
@@ -247,14 +248,9 @@ class TurtleSimNode:
             self._pending_cmds[name] = (vx, vy, w)
 
     def handle_save_image(self, req):
-        path = req.path or self.params.image_path
-        try:
-            written = self.save_image(path)
-        except (OSError, ValueError) as exc:
-            rospy.logerr('Could not save the image to [%s]: %s', path, exc)
-            raise rospy.ServiceException('could not save image: %s' % exc) from exc
-        rospy.loginfo('Saved the canvas to [%s]', written)
-        return SaveImageResponse(written)
+        return SaveImageResponse(answer_save_image(req.path, self.params.image_path,
+                                                   self.save_image, 'canvas',
+                                                   'could not save image'))
 
     # ------------------------------------------------------------------ pictures
     def snapshot(self):
@@ -270,9 +266,10 @@ class TurtleSimNode:
             return self.world.canvas.version, self.world.poses_now().tobytes()
 
     def save_image(self, path):
+        """Writes the canvas and turtles to path (absolute); returns the path written."""
         from .picture import save_png  # Pillow only when a picture is wanted
         pixels, poses = self.snapshot()
-        return save_png(os.path.abspath(os.path.expanduser(path)), pixels, poses)
+        return save_png(path, pixels, poses)
 
     # ------------------------------------------------------------------ ticking
     # Called by the TickLoop every DT_S; the wall WARNs and the frames leave the lock.
@@ -318,11 +315,8 @@ def main():
             rospy.logwarn('Reason given for shutdown: [%s]', detail)
         sim.stop(wait=False)
         if params.save_image_on_shutdown:
-            try:
-                path = sim.save_image(params.image_path)
-                rospy.loginfo('Saved the canvas to [%s]', path)
-            except (OSError, ValueError) as exc:
-                rospy.logerr('Could not save the image to [%s]: %s', params.image_path, exc)
+            with contextlib.suppress(OSError, ValueError):  # logged: the node still ends
+                save_logged('', params.image_path, sim.save_image, 'canvas')
         done.set()
 
     add_preshutdown_hook(on_shutdown)

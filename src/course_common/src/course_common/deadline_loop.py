@@ -1,0 +1,104 @@
+"""A function called in its own thread on absolute deadlines (turtlesim's tick, stageros's steps).
+
+Deadlines is the pure schedule (times come in as arguments, seconds on a monotonic clock);
+DeadlineLoop is the thread that sleeps until each deadline and makes the call. Deadlines that
+are absolute do not drift: a call that runs late does not push the later ones back.
+"""
+import math
+import threading
+import time
+
+import rospy
+
+#: How often a failing call is logged at most, s (it may fail at every tick).
+ERROR_LOG_PERIOD_S = 1.0
+
+
+class Deadlines:
+    """When each call is due: first at first_s, then every period_s after the last deadline.
+
+    period_s 0 means no pacing: each call is due as soon as the last one has ended. If the
+    loop falls more than max_lag_periods periods behind (a loaded machine, a suspended
+    process) the schedule restarts from then instead of running a burst of catch-up calls,
+    as a Qt timer does.
+    """
+
+    def __init__(self, period_s, first_s, max_lag_periods):
+        if not (math.isfinite(period_s) and period_s >= 0.0):
+            raise ValueError('period must be a finite number of seconds >= 0, not %r'
+                             % (period_s,))
+        if not max_lag_periods >= 0:
+            raise ValueError('max_lag_periods must be >= 0, not %r' % (max_lag_periods,))
+        self.period_s = period_s
+        self.next_s = first_s
+        self.max_lag_periods = max_lag_periods
+
+    def delay(self, now_s):
+        """Seconds to wait before the next call may run (0.0 when it is due)."""
+        return max(0.0, self.next_s - now_s)
+
+    def done(self, now_s):
+        """Record that the due call ended at now_s; schedules the next one."""
+        if self.period_s == 0.0:
+            self.next_s = now_s
+            return
+        self.next_s += self.period_s
+        if now_s - self.next_s > self.max_lag_periods * self.period_s:
+            self.next_s = now_s
+
+
+class DeadlineLoop:
+    """Calls call() on a Deadlines schedule in a daemon thread until stop() (or ROS shutdown).
+
+    schedule: called once in the thread before the first call, returns the Deadlines (it may
+    wait for something first, and reads the clock itself). call() returning False ends the
+    loop. An exception from call() is logged as "<what> failed: <exception>" (throttled) and
+    the loop goes on, unless the loop was stopped or ROS is shutting down, which ends it.
+    stop_at_shutdown: also end when ROS shuts down, without waiting for a failed call.
+    clock and sleep are injected for tests.
+    """
+
+    def __init__(self, call, schedule, name, what, stop_at_shutdown=True,
+                 clock=time.monotonic, sleep=time.sleep):
+        self._call = call
+        self._schedule = schedule
+        self._what = what
+        self._stop = threading.Event()
+        self._stop_at_shutdown = stop_at_shutdown
+        self._clock, self._sleep = clock, sleep
+        self._thread = threading.Thread(target=self.run, name=name, daemon=True)
+
+    def start(self):
+        self._thread.start()
+
+    def stop(self):
+        """Ask the loop to end; it sees the request within one period."""
+        self._stop.set()
+
+    def join(self, timeout_s):
+        """Wait for the loop to end (not from the loop's own thread, nor before start)."""
+        if self._thread.ident is not None and self._thread is not threading.current_thread():
+            self._thread.join(timeout=timeout_s)
+
+    def _ending(self):
+        return self._stop.is_set() or rospy.is_shutdown()
+
+    def run(self):
+        """The loop itself (the thread's body; tests call it directly)."""
+        deadlines = self._schedule()
+        while not self._stop.is_set() and not (self._stop_at_shutdown and rospy.is_shutdown()):
+            delay = deadlines.delay(self._clock())
+            if delay > 0.0:
+                # A plain sleep is cheaper than Event.wait; stop() is seen within a period.
+                self._sleep(delay)
+                continue
+            try:
+                go_on = self._call()
+            except Exception as exc:
+                if self._ending():
+                    break
+                rospy.logerr_throttle(ERROR_LOG_PERIOD_S, '%s failed: %r' % (self._what, exc))
+                go_on = None
+            if go_on is False:
+                break
+            deadlines.done(self._clock())
