@@ -86,6 +86,13 @@ class StagerosInterfaceTest(StageTestCase):
             steps = {b - a for a, b in zip(stamps, stamps[1:], strict=False)}
             self.assertEqual(steps, {STEP_NS}, '%s: one message per 0.1 s of sim time'
                              % rec.topic)
+        # roscpp numbers a publisher's messages whether anybody listens or not: stageros's
+        # seq is the count of steps published before (t = 0.1 s is seq 0), joined mid-run.
+        for topic, msg_class in (('/robot_1/odom', Odometry), ('/robot_1/base_scan', LaserScan)):
+            rec = Recorder(topic, msg_class, keep=1)
+            msg = rec.wait_first()
+            rec.close()
+            self.assertEqual(msg.header.seq, stamp_ns(msg) // STEP_NS - 1, topic)
 
     def test_tf_tree_with_leading_slashes(self):
         rec = Recorder('/tf', TFMessage, keep=1)

@@ -36,8 +36,6 @@ class RobotOutput:
         self.stall_pub = (rospy.Publisher(names.stall, Bool, queue_size=1, latch=True)
                           if params.publish_stall else None)
         self.last_stall = None
-        self.seq = {'odom': 0, 'truth': 0}
-        self.scan_seq = [0] * len(names.scans)
         s = wire.string_bytes
         self.odom_frame = s(names.odom_frame)
         self.footprint_frame = s(names.footprint_frame)
@@ -53,22 +51,25 @@ class RobotOutput:
         self.cmd_sub = rospy.Subscriber(names.cmd_vel, Twist, on_cmd_vel, callback_args=index,
                                         queue_size=QUEUE_SIZE)
 
-    def collect(self, robot, secs, nsecs, out):
-        """Append (publisher, frame) for every subscribed topic of this robot to out."""
+    def collect(self, robot, seq, secs, nsecs, out):
+        """Append (publisher, frame) for every subscribed topic of this robot to out.
+
+        seq: the header's seq, the number of steps published before this one (roscpp counts
+        a publisher's messages whether anybody listens or not, so stageros's seq is that).
+        """
         if has_subscribers(self.odom_pub):
             out.append((self.odom_pub, wire.odometry_frame(
-                self._next('odom'), secs, nsecs, self.odom_frame, self.child_frame,
+                seq, secs, nsecs, self.odom_frame, self.child_frame,
                 robot.odom_pose, robot.command)))
         if has_subscribers(self.truth_pub):
             out.append((self.truth_pub, wire.odometry_frame(
-                self._next('truth'), secs, nsecs, self.odom_frame, self.empty,
+                seq, secs, nsecs, self.odom_frame, self.empty,
                 robot.pose, robot.truth_twist)))
-        for k, (pub, ranger) in enumerate(zip(self.scan_pubs, robot.rangers, strict=True)):
+        for pub, template, ranger in zip(self.scan_pubs, self.templates, robot.rangers,
+                                         strict=True):
             if has_subscribers(pub):
-                seq = self.scan_seq[k]
-                self.scan_seq[k] += 1
-                out.append((pub, self.templates[k].frame(seq, secs, nsecs, ranger.ranges,
-                                                         ranger.intensities)))
+                out.append((pub, template.frame(seq, secs, nsecs, ranger.ranges,
+                                                ranger.intensities)))
 
     def transforms(self, robot, secs, nsecs):
         """odom -> base_footprint (odometry pose), -> base_link (identity), -> each laser."""
@@ -90,11 +91,6 @@ class RobotOutput:
         self.last_stall = bool(robot.stalled)
         return self.last_stall
 
-    def _next(self, key):
-        seq = self.seq[key]
-        self.seq[key] = seq + 1
-        return seq
-
     def unregister(self):
         for pub in (self.odom_pub, self.truth_pub, *self.scan_pubs, self.stall_pub):
             if pub is not None:
@@ -111,6 +107,7 @@ class StepOutput:
         self.robots = [RobotOutput(i, n, r, params, on_cmd_vel)
                        for i, (n, r) in enumerate(zip(names, world.robots, strict=True))]
         self.publish_stall = params.publish_stall
+        self.steps_published = 0  # the headers' seq (see RobotOutput.collect)
         # Every robot's per-step publishers: one any() over them per step lets a step with
         # no robot topic subscribed (the flat-out benchmark) skip the loop over the robots.
         self._robot_pubs = [pub for output in self.robots
@@ -147,11 +144,13 @@ class StepOutput:
     def collect(self, world, stamp):
         """(frames, stalls) of this step: [(publisher, frame)], [(publisher, Bool value)]."""
         secs, nsecs = stamp
+        seq = self.steps_published
+        self.steps_published += 1
         frames = []
         stalls = []
         if any(map(has_subscribers, self._robot_pubs)):
             for output, robot in zip(self.robots, world.robots, strict=True):
-                output.collect(robot, secs, nsecs, frames)
+                output.collect(robot, seq, secs, nsecs, frames)
         if self.publish_stall:
             for output, robot in zip(self.robots, world.robots, strict=True):
                 stall = output.stall_changed(robot)
