@@ -27,11 +27,12 @@ LINES = 50        # log lines measured: 5 s at 10 Hz
 LINE_DEADLINE_S = 60.0  # a talker that has not printed its lines by then is reported failed
 STOP_S = 10.0
 
-# The talker's main() before the fix, word for word but for the import line.
+# The talker's main() before the fix, word for word but for the imports.
 BEFORE = ('import rospy\n'
-          'from chat_pkg.talker_node import Talker\n'
+          'from chat_pkg.talker_node import RATE_HZ, Talker\n'
+          'from course_common.startup import loop_at_rate\n'
           "rospy.init_node('talker')\n"
-          'Talker().spin()\n')
+          'loop_at_rate(RATE_HZ, Talker().cycle)\n')
 VARIANTS = [('before (rospy.init_node)', ['/usr/bin/python3', '-c', BEFORE]),
             ('after (course_common.startup.init_node)', ['rosrun', 'chat_pkg', 'talker'])]
 
