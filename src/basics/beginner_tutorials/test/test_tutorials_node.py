@@ -91,7 +91,9 @@ class TestTutorials(unittest.TestCase):
         talker, listener = rosrun('talker'), rosrun('listener')
         try:
             self._wait_chatter(talker, '/talker', MESSAGES_WANTED)
-            self.assertIn('/listener', subscribers_of('/chatter'))
+            # Started together with the talker, the listener may register after it.
+            wait_for(lambda: '/listener' in subscribers_of('/chatter'), START_DEADLINE_S,
+                     '/listener subscribed to /chatter')
             self._wait_logs(listener, '/listener', MESSAGES_WANTED)
         finally:
             (talker_code, talker_out), (listener_code, listener_out) = stop(talker), stop(listener)

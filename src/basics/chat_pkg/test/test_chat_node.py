@@ -62,7 +62,9 @@ class TestChat(unittest.TestCase):
 
     def test_listener_logs_what_it_hears(self):
         self.assertEqual(publishers_of('/chatter'), {'/talker'})
-        self.assertIn('/listener', subscribers_of('/chatter'))
+        # The launch starts both at once: on a loaded machine the listener may register last.
+        wait_for(lambda: '/listener' in subscribers_of('/chatter'), START_DEADLINE_S,
+                 "chat.launch's /listener subscribed to /chatter")
         # The listener's lines from here on: /talker is alone on /chatter (setUp), so none is
         # about a message of another test's talker (those exited before they unregistered).
         start = len(self.rosout.lines(node='/listener'))
