@@ -55,7 +55,8 @@ class StagerosInterfaceTest(StageTestCase):
         self.assertFalse([t for t in types if t.startswith('/robot_') and 'stall' in t],
                          'the stall topic is an extra, off by default')
         self.assertNotIn('/map', types)
-        self.assertIn('/reset_positions', service_names())
+        wait_for(lambda: '/reset_positions' in service_names(), START_DEADLINE_S,
+                 'the reset_positions service')
         self.assertIs(rospy.get_param('/use_sim_time'), True)
 
     def test_odom_and_ground_truth_at_the_start(self):

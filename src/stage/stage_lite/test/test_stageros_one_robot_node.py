@@ -44,7 +44,8 @@ class StagerosOneRobotTest(StageTestCase):
                                 ('base_scan', 'sensor_msgs/LaserScan')):
             self.assertEqual(types[NS + topic], msg_type)
         self.assertFalse([t for t in types if 'robot_0' in t or t.startswith(NS + 'solo')])
-        self.assertIn(NS + 'reset_positions', service_names())
+        wait_for(lambda: NS + 'reset_positions' in service_names(), START_DEADLINE_S,
+                 'the reset_positions service')
         self.assertIn('/clock', types)
 
     def test_frames_have_no_namespace(self):
