@@ -120,6 +120,8 @@ test_dirs() { local d; for d in $(package_dirs); do [[ ! -d $d/test/$1 ]] || ech
 
 cmd_unit() {
   source_devel
+  # A few unit tests start a node against a master in the test's own process.
+  local_ros_network
   mkdir -p "$RESULTS_DIR"
   local status=0 dirs
   mapfile -t dirs < <(test_dirs unit)

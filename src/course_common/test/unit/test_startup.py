@@ -43,6 +43,10 @@ def master():
 
 def run_probe(master, start):
     env = dict(os.environ, ROS_MASTER_URI=master.uri)
+    # Everything runs on this machine: name it localhost unless the user chose a name, so a
+    # hostname that does not resolve (a bare container) cannot keep the probe from its master.
+    if not env.get('ROS_HOSTNAME') and not env.get('ROS_IP'):
+        env['ROS_HOSTNAME'] = 'localhost'
     done = subprocess.run([sys.executable, '-c', PROBE, start], capture_output=True, text=True,
                           timeout=RUN_TIMEOUT_S, env=env, check=False)
     assert done.returncode == 0, done.stderr
