@@ -134,9 +134,10 @@ def child(n_robots, duration_s):
     import rosnode
     import rospy
     from convoy.bag_report import summarise_bag
-    from convoy.harness import POLL_S, PrivateMasterLaunch, convoy_node_names, launch_for
+    from convoy.harness import POLL_S, convoy_node_names, launch_for
     from convoy.metrics import delays_since_newest, percentile
     from convoy.recording import BagRecorder, convoy_topics
+    from course_common.private_launch import PrivateMasterLaunch
     from course_common.processes import rss_mb
     from course_common.testing import wait_for
 

@@ -24,9 +24,9 @@ import time
 
 import numpy as np
 import rospy
-from convoy.harness import POLL_S, PrivateMasterLaunch
 from course_common.angles import wrap_angle
 from course_common.arena import SPAWN_M, WORLD_SIZE_M
+from course_common.private_launch import POLL_S, PrivateMasterLaunch
 from course_common.testing import WaitError, spawn, wait_for
 from geometry_msgs.msg import Pose2D, Twist
 from turtlesim.msg import Pose as TurtlePose

@@ -4,7 +4,10 @@
 Each failure names the rospy attribute, what it should do and rospy's version (pin()). The
 checks that need no master are in unit/test_rospy_internals.py.
 """
+import os
+import signal
 import struct
+import sys
 import threading
 import unittest
 
@@ -19,11 +22,14 @@ from course_common.rospy_internals import (
     name_mappings,
     write_frame,
 )
-from course_common.testing import pin, wait_for
+from course_common.testing import pin, spawn, wait_for
 from rosgraph_msgs.msg import Log
 from rospy.impl.tcpros_base import TCPROSTransport
 from rospy.impl.tcpros_pubsub import QueuedConnection
+from std_msgs.msg import String
 from turtlesim.msg import Pose
+
+from course_common import rospy_internals
 
 DEADLINE_S = 30.0  # connections between processes on a loaded 2-core machine
 # Values exact in float32, so a frame that arrives intact compares equal.
@@ -32,6 +38,27 @@ POSE = (1.5, -2.25, 0.125, 3.0, -0.5)
 POSE_FRAME = struct.Struct('<I5f')
 POSE_BYTES = 20
 ECHO_NODES = {'/pinned_echo_a', '/pinned_echo_b'}
+# A subscriber in a process of its own, printing the sequence number that opens each
+# std_msgs/String it receives and whether the rest of the message is intact.
+STALL_LISTENER = """
+import rospy
+from std_msgs.msg import String
+rospy.init_node('pinned_stall_listener')
+def heard(msg):
+    print(msg.data[:8], msg.data[8:] == 'x' * (len(msg.data) - 8), flush=True)
+rospy.Subscriber('/pinned/stall', String, heard, queue_size=10000)
+print('subscribed', flush=True)
+rospy.spin()
+"""
+STALL_PAYLOAD = 'x' * 10000  # about a 1081-beam scan's size: buffers take part of a frame
+MAX_STALL_FRAMES = 20000  # 200 MB: far beyond any socket buffer, the loop ends long before
+
+
+def string_frame(seq):
+    """A TCPROS frame of a std_msgs/String: '%08d' % seq, then STALL_PAYLOAD."""
+    data = ('%08d' % seq + STALL_PAYLOAD).encode()
+    body = struct.pack('<I', len(data)) + data
+    return struct.pack('<I', len(body)) + body
 
 
 class Inbox:
@@ -105,6 +132,48 @@ class RospyInternalsTest(unittest.TestCase):
         inbox.sub.unregister()
         pub.unregister()
         write_frame(pub, frame)  # unregistered: impl is None or closed, nothing is sent
+
+    def test_a_subscriber_that_stops_reading_keeps_its_connection_and_whole_messages(self):
+        # A subscriber stopped (SIGSTOP: a suspended rostopic echo, a host whose cable is
+        # out) while frames keep coming: its buffers fill, one frame goes out only in part,
+        # later frames are dropped. Resumed, it must still be connected and hear whole
+        # messages: the cut frame was finished first (rospy_internals.write_frame).
+        pub = unqueued_publisher('/pinned/stall', String)
+        listener = spawn([sys.executable, '-c', STALL_LISTENER])
+        self.addCleanup(listener.stop)
+        wait_for(lambda: has_subscribers(pub), DEADLINE_S, 'the stall listener to connect')
+        conn = pub.impl.connections[0]
+        os.kill(listener.pid, signal.SIGSTOP)
+        try:
+            for seq in range(MAX_STALL_FRAMES):
+                write_frame(pub, string_frame(seq))
+                stream = rospy_internals._STREAMS.get(conn)
+                if conn not in pub.impl.connections or (stream is not None and stream.pending):
+                    break
+            else:
+                self.fail('the buffers never took part of a frame in %d frames' % seq)
+        finally:
+            os.kill(listener.pid, signal.SIGCONT)
+        pin(conn in pub.impl.connections, 'rospy_internals.write_frame',
+            'keeps a subscriber whose buffers took part of a frame')
+        resumed_at = seq + 1
+        deadline_seq = resumed_at + MAX_STALL_FRAMES
+
+        def heard_after_resume():
+            nonlocal resumed_at
+            if resumed_at < deadline_seq:
+                write_frame(pub, string_frame(resumed_at))
+                resumed_at += 1
+            return any(line.split()[:1] and line.split()[0].isdigit()
+                       and int(line.split()[0]) > seq for line in listener.lines())
+        wait_for(heard_after_resume, DEADLINE_S, 'a message sent after the listener resumed',
+                 alive=listener.alive)
+        self.assertIn(conn, pub.impl.connections, 'the connection closed after the resume')
+        heard = [line.split() for line in listener.lines() if line[:1].isdigit()]
+        self.assertTrue(all(intact == 'True' for _, intact in heard), heard[-5:])
+        numbers = [int(n) for n, _ in heard]
+        self.assertEqual(numbers, sorted(numbers), 'messages out of order')
+        pub.unregister()
 
     def test_remove_connection_takes_a_subscriber_out(self):
         pub = unqueued_publisher('/pinned/remove', Pose)

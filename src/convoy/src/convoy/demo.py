@@ -15,13 +15,14 @@ import time
 import rosgraph
 import rospkg
 import rospy
+from course_common.private_launch import PrivateMasterLaunch
 from course_common.startup import init_node
 from course_common.waiting import WaitError, wait_for
 from turtle_lite.rviz_snapshot import snapshot
 from turtle_lite.srv import SaveImage
 
 from convoy.bag_report import BagError, summarise_bag, write_figures
-from convoy.harness import POLL_S, HarnessError, PrivateMasterLaunch, launch_for
+from convoy.harness import POLL_S, HarnessError, launch_for
 from convoy.recording import BagRecorder, convoy_topics
 from convoy.report import table_lines
 

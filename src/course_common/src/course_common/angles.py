@@ -26,3 +26,14 @@ def wrap_angle(angle_rad):
     wrapped = (angle_rad + math.pi) % TWO_PI - math.pi
     # Rounding can land exactly on +pi (e.g. for -pi - 1e-17); keep the half-open interval.
     return -math.pi if wrapped >= math.pi else wrapped
+
+
+def yaw_from_quaternion(x, y, z, w):
+    """The rotation about z (rad, counter-clockwise positive, in [-pi, pi]) of the quaternion
+    (x, y, z, w), as tf's euler_from_quaternion gives it: a planar robot's heading from a
+    geometry_msgs/Quaternion (Stage's odometry). ValueError if a component is not finite.
+    """
+    for name, value in (('x', x), ('y', y), ('z', z), ('w', w)):
+        if not is_finite_number(value):
+            raise ValueError('quaternion %s = %r: expected a finite number' % (name, value))
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))

@@ -2,11 +2,13 @@
 
 Used by the tools (convoy_demo's roslaunch and rosbag record, rviz_snapshot's rviz and Xvfb),
 the rostest nodes and the benchmarks. Also what a benchmark reads of a process in /proc:
-cpu_ticks, rss_mb and peak_rss_mb.
+cpu_ticks, rss_mb and peak_rss_mb; and the texts of the rospy log lines a process printed
+(rospy_texts).
 """
 import codecs
 import contextlib
 import os
+import re
 import select
 import signal
 import subprocess
@@ -24,6 +26,15 @@ TAIL_LINES = 15  # lines of output quoted when a wait fails
 #: /proc/<pid>/stat fields after the command name ("pid (comm) state ppid ..."): utime and
 #: stime are fields 14 and 15 of the whole line, 12 and 13 after the name (0-based 11, 12).
 STAT_UTIME, STAT_STIME = 11, 12
+#: rospy's log line on a terminal: "[INFO] [<wall time>]: <text>" on wall time, "[INFO]
+#: [<wall time>, <sim time>]: <text>" on sim time. Groups: level, sim time (None), text.
+ROSPY_LINE = re.compile(r'^\[(DEBUG|INFO|WARN|ERROR|FATAL)\] \[[\d.]+(?:, ([\d.]+))?\]: (.*)$')
+
+
+def rospy_texts(lines, levels=('INFO',)):
+    """The texts of rospy's log lines of the given levels among a process's output lines, in
+    order, on either clock (a node on Stage's sim time prints both times)."""
+    return [m.group(3) for m in map(ROSPY_LINE.match, lines) if m and m.group(1) in levels]
 
 
 def split_lines(text, final=False):

@@ -11,16 +11,19 @@ update renames or changes one, those tests fail naming it, instead of the simula
 slow or silent.
 """
 import contextlib
+import weakref
 
 import rospy
 import rospy.core
 import rospy.names
 from rospy.impl.paramserver import get_param_server_cache
 
-from course_common.tcpros_frames import send_frame
+from course_common.tcpros_frames import FrameStream
 
 #: The parameter whose local cache entry cheap_rosout() and cache_rosout_param() seed.
 ROSOUT_TOPICS_PARAM = '/rosout_disable_topics_generation'
+#: write_frame's FrameStream of each connection (forgotten with the connection).
+_STREAMS = weakref.WeakKeyDictionary()
 
 
 def has_subscribers(pub):
@@ -52,16 +55,21 @@ def write_frame(pub, frame):
     Replaces ``pub.publish(msg)``: what rospy's _PublisherImpl.publish does after
     serialising, without the per-call checks, buffer juggling and message object. The tick
     sends up to 62.5 x 2 x N messages a second and that overhead was most of the node's CPU.
-    Unlike rospy's blocking sendall, a subscriber that stops reading only loses frames (as
-    with roscpp's queue of 1) and never stalls the tick; a connection that fails, or took
-    half a frame, is removed and closed.
+    Unlike rospy's blocking sendall, a subscriber that stops reading only loses whole frames
+    (as with roscpp's queue of 1) and never stalls the tick; a frame its buffers took part of
+    is finished first (course_common.tcpros_frames.FrameStream), so it keeps its connection
+    and gets whole messages again once it reads. A connection that fails is removed and
+    closed.
     """
     impl = pub.impl
     if impl is None or impl.closed:
         return  # unregistered (killed) between the step and the publish
     for conn in impl.connections:
         try:
-            if send_frame(conn.socket, frame):
+            stream = _STREAMS.get(conn)
+            if stream is None:
+                stream = _STREAMS[conn] = FrameStream()
+            if stream.send(conn.socket, frame):
                 conn.stat_bytes += len(frame)
                 conn.stat_num_msg += 1
         except Exception:

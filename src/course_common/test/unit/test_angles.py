@@ -1,8 +1,8 @@
-"""Unit tests of course_common.angles: the lessons' wrap into [-pi, pi)."""
+"""Unit tests of course_common.angles: the lessons' wrap into [-pi, pi), yaw of a quaternion."""
 import math
 
 import pytest
-from course_common.angles import wrap_angle
+from course_common.angles import wrap_angle, yaw_from_quaternion
 
 TOL = 1e-9  # rad: pure arithmetic; the wrap adds at most a few ulps of 2 pi per turn
 PI = math.pi
@@ -51,3 +51,23 @@ def test_wrapped_difference_is_the_short_turn(target, heading, turn):
 def test_refuses_what_is_not_a_finite_number(angle):
     with pytest.raises(ValueError, match='expected a finite number'):
         wrap_angle(angle)
+
+
+@pytest.mark.parametrize('yaw', [0.0, 0.3, -0.3, PI / 2, -PI / 2, 3.0, -3.0, PI - 1e-9])
+def test_yaw_from_quaternion_of_a_planar_rotation(yaw):
+    # a rotation about z by yaw: (0, 0, sin(yaw/2), cos(yaw/2)), as Stage's odometry sends it
+    assert yaw_from_quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)) \
+        == pytest.approx(yaw, abs=TOL)
+
+
+def test_yaw_from_quaternion_of_the_negated_quaternion_is_the_same():
+    half = 0.6 / 2
+    assert yaw_from_quaternion(0.0, 0.0, -math.sin(half), -math.cos(half)) \
+        == pytest.approx(0.6, abs=TOL)  # -q is the same rotation
+
+
+@pytest.mark.parametrize('q', [(0.0, 0.0, math.nan, 1.0), (0.0, 0.0, 0.0, math.inf),
+                               (None, 0.0, 0.0, 1.0), (0.0, 0.0, True, 1.0)])
+def test_yaw_from_quaternion_rejects_non_finite(q):
+    with pytest.raises(ValueError):
+        yaw_from_quaternion(*q)

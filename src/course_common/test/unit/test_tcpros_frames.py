@@ -1,10 +1,11 @@
-"""Unit tests of course_common.tcpros_frames: a whole frame or nothing, never a blocked sender."""
+"""Unit tests of course_common.tcpros_frames: whole frames in order, never a blocked sender."""
 import socket
 import struct
 import threading
+import time
 
 import pytest
-from course_common.tcpros_frames import PartialFrameError, send_frame
+from course_common.tcpros_frames import FrameStream
 
 FRAME = struct.Struct('<II')  # a sequence number and a marker, 8 bytes like a tiny message
 MARKER = 0xC0FFEE
@@ -40,61 +41,97 @@ def _read_all(sock):
         chunks.append(chunk)
 
 
+def _frames(data):
+    """The (sequence, marker) frames of data, which must hold whole frames only."""
+    assert len(data) % FRAME.size == 0, 'a frame was cut: %d bytes' % len(data)
+    return [FRAME.unpack_from(data, k) for k in range(0, len(data), FRAME.size)]
+
+
 def test_frames_reach_a_reader_that_keeps_up(tcp_pair):
     writer, reader = tcp_pair
-    assert all(send_frame(writer, FRAME.pack(i, MARKER)) for i in range(10))
+    stream = FrameStream()
+    assert all(stream.send(writer, FRAME.pack(i, MARKER)) for i in range(10))
     data = b''
     while len(data) < 10 * FRAME.size:
         data += reader.recv(4096)
-    assert [FRAME.unpack_from(data, k * FRAME.size) for k in range(10)] == [
-        (i, MARKER) for i in range(10)]
+    assert _frames(data) == [(i, MARKER) for i in range(10)]
 
 
 def test_a_stalled_reader_loses_whole_frames_and_never_blocks_the_sender(tcp_pair):
     writer, reader = tcp_pair
+    stream = FrameStream()
     results = []
 
     def flood():
-        results.extend(send_frame(writer, FRAME.pack(i, MARKER)) for i in range(200000))
+        results.extend(stream.send(writer, FRAME.pack(i, MARKER)) for i in range(200000))
 
     sender = threading.Thread(target=flood, daemon=True)
     sender.start()
     sender.join(SEND_DEADLINE_S)
-    assert not sender.is_alive(), 'send_frame blocked on a reader that does not read'
+    assert not sender.is_alive(), 'FrameStream.send blocked on a reader that does not read'
     assert False in results, 'the buffers never filled: the test did not exercise dropping'
 
-    # What did arrive is a whole number of intact frames, in order: nothing was half-sent.
+    # The reader reads again: a last frame goes out after any cut one has been finished.
     data = _read_all(reader)
-    assert len(data) % FRAME.size == 0
-    frames = [FRAME.unpack_from(data, k) for k in range(0, len(data), FRAME.size)]
+    last = len(results)
+    deadline = time.monotonic() + SEND_DEADLINE_S
+    while not stream.send(writer, FRAME.pack(last, MARKER)):
+        assert time.monotonic() < deadline, 'the cut frame was never finished'
+        data += _read_all(reader)
+    while len(data) % FRAME.size or FRAME.unpack_from(data, len(data) - FRAME.size)[0] != last:
+        assert time.monotonic() < deadline, 'the last frame never arrived'
+        data += _read_all(reader)
+    # What arrived is every frame send() called sent, whole and in order, then the last.
+    frames = _frames(data)
     assert all(marker == MARKER for _, marker in frames)
-    sequence = [seq for seq, _ in frames]
-    assert sequence == sorted(sequence)
-    assert sequence == [i for i, sent in enumerate(results) if sent]
+    assert [seq for seq, _ in frames] == [i for i, sent in enumerate(results) if sent] + [last]
 
 
 class _ShortWriteSocket:
-    """A socket whose buffer has room for only part of the next frame."""
+    """A socket whose buffer takes `room` more bytes, then nothing until it is given more."""
 
     def __init__(self, room):
         self.room = room
+        self.data = b''
 
     def send(self, data, flags):
         assert flags & socket.MSG_DONTWAIT, 'frames must be sent without blocking'
-        return min(self.room, len(data))
+        n = min(self.room, len(data))
+        if n == 0:
+            raise BlockingIOError()
+        self.room -= n
+        self.data += bytes(data[:n])
+        return n
 
 
 @pytest.mark.parametrize('room', [1, 7])
-def test_a_partly_sent_frame_is_an_error(room):
-    with pytest.raises(PartialFrameError):
-        send_frame(_ShortWriteSocket(room), FRAME.pack(1, MARKER))
+def test_a_cut_frame_is_finished_before_the_next_and_later_ones_wait_whole(room):
+    sock = _ShortWriteSocket(room)
+    stream = FrameStream()
+    assert stream.send(sock, FRAME.pack(1, MARKER))  # on its way: part sent, part pending
+    assert stream.pending == FRAME.size - room
+    assert not stream.send(sock, FRAME.pack(2, MARKER))  # no room: frame 2 dropped whole
+    sock.room = FRAME.size - room - 1
+    assert not stream.send(sock, FRAME.pack(3, MARKER))  # frame 1 not finished: 3 dropped
+    assert stream.pending == 1
+    sock.room = 100
+    assert stream.send(sock, FRAME.pack(4, MARKER))  # the end of 1, then 4 whole
+    assert stream.pending == 0
+    assert _frames(sock.data) == [(1, MARKER), (4, MARKER)]
+
+
+def test_full_buffers_drop_the_frame_whole():
+    sock = _ShortWriteSocket(0)
+    stream = FrameStream()
+    assert not stream.send(sock, FRAME.pack(1, MARKER))
+    assert stream.pending == 0 and sock.data == b''
 
 
 def test_a_broken_connection_raises_the_socket_error(tcp_pair):
     writer, reader = tcp_pair
     reader.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack('ii', 1, 0))
     reader.close()  # RST: the next writes fail with ECONNRESET or EPIPE
-    with pytest.raises(OSError) as err:
+    stream = FrameStream()
+    with pytest.raises(OSError):
         for i in range(1000):
-            send_frame(writer, FRAME.pack(i, MARKER))
-    assert not isinstance(err.value, PartialFrameError)
+            stream.send(writer, FRAME.pack(i, MARKER))

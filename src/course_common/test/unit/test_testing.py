@@ -8,6 +8,7 @@ import unittest
 
 import pytest
 from course_common.ports import free_port
+from course_common.processes import rospy_texts
 from course_common.testing import (
     ScratchDirTestCase,
     consecutive,
@@ -62,13 +63,21 @@ def test_consecutive(values, expected):
     assert consecutive(values) is expected
 
 
+def test_rospy_texts_of_other_levels():
+    lines = ['[INFO] [1.0]: a', '[WARN] [2.0, 0.1]: b', '[ERROR] [3.0]: c', 'd: [INFO] [4.0]: e']
+    assert rospy_texts(lines, ('WARN', 'ERROR')) == ['b', 'c']
+    assert rospy_texts(lines) == ['a']
+
+
 def test_info_texts_keeps_rospys_info_lines_only():
     lines = ['[INFO] [1700000000.123456]: hello world 0',
              '[WARN] [1700000000.2]: careful',
              'plain output',
              '[INFO] [1700000000.3]: ',
-             '[INFO] [1700000000.4]: /listener_1_2I heard hello']
-    assert info_texts(lines) == ['hello world 0', '', '/listener_1_2I heard hello']
+             '[INFO] [1700000000.4]: /listener_1_2I heard hello',
+             '[INFO] [1700000000.5, 12.300000]: Robot 1: waiting for team']  # on sim time
+    assert info_texts(lines) == ['hello world 0', '', '/listener_1_2I heard hello',
+                                 'Robot 1: waiting for team']
 
 
 class _Scratch(ScratchDirTestCase):

@@ -9,14 +9,13 @@ Production code imports course_common.waiting, .processes, .ports and .xvfb, nev
 """
 import importlib.metadata
 import os
-import re
 import shutil
 import sys
 import tempfile
 import unittest
 
 from course_common.ports import free_port
-from course_common.processes import ChildProcess, cpu_ticks, rss_mb, spawn
+from course_common.processes import ChildProcess, cpu_ticks, rospy_texts, rss_mb, spawn
 from course_common.waiting import POLL_S, WaitError, wait_for
 from course_common.xvfb import Xvfb
 
@@ -30,8 +29,6 @@ __all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess',
 START_DEADLINE_S = 30.0  # a node or tool process coming up (rosrun + Python start-up)
 EVENT_DEADLINE_S = 15.0  # something that should follow promptly (a message, a log line, an exit)
 GTEST_OUTPUT = '--gtest_output=xml:'
-#: rospy's INFO line on a terminal: "[INFO] [<wall time>]: <text>".
-INFO_LINE = re.compile(r'^\[INFO\] \[[\d.]+\]: (.*)$')
 
 
 def results_dir(argv=None):
@@ -49,8 +46,9 @@ def results_dir(argv=None):
 
 
 def info_texts(lines):
-    """The texts of rospy's INFO lines among a process's screen lines, in order."""
-    return [m.group(1) for m in map(INFO_LINE.match, lines) if m]
+    """The texts of rospy's INFO lines among a process's screen lines, in order, on either
+    clock (course_common.processes.rospy_texts)."""
+    return rospy_texts(lines)
 
 
 def numbers_in(texts, pattern, kind=int):

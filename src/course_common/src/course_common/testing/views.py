@@ -11,6 +11,7 @@ import rospy
 import tf2_ros
 from turtlesim.msg import Pose
 
+from course_common.angles import yaw_from_quaternion
 from course_common.testing import wait_for
 
 POSITION_TOL_M = 1e-4  # float32 poses through float64 transforms: far below a pose's change
@@ -18,8 +19,8 @@ YAW_TOL_RAD = 1e-4
 
 
 def yaw_of(q):
-    """The rotation about z of a quaternion (x, y, z, w), as tf's euler_from_quaternion."""
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+    """The rotation about z of a geometry_msgs/Quaternion, as tf's euler_from_quaternion."""
+    return yaw_from_quaternion(q.x, q.y, q.z, q.w)
 
 
 class TfPoseCheck:

@@ -7,6 +7,7 @@ from turtle_lite.rviz_screen import (
     MIN_TEXT_PIXELS,
     colour_pixels,
     error_lines,
+    missing_colours,
     render_area,
     shows_lesson,
 )
@@ -39,6 +40,24 @@ def test_render_area_cuts_the_widgets_off():
     view = render_area(screen())
     assert view.shape == (360, 390, 3)
     assert (view[5, 5] == BACKGROUND).all()
+
+
+def test_render_area_found_by_a_map_that_covers_the_view():
+    # Stage's view: the map's free cells (grey, a little noisy) fill the whole 3D view
+    img = screen(arena=False)
+    img[20:380, 200:590] = (190, 191, 193)
+    assert render_area(img).size == 0  # no background left to find it by
+    assert render_area(img, background_rgb=(192, 192, 192), tolerance=3).shape == (360, 390, 3)
+    assert render_area(img, background_rgb=(192, 192, 192), tolerance=1).size == 0
+
+
+def test_missing_colours_names_those_below_the_count():
+    img = screen(robots=2)  # PALETTE[0], PALETTE[1]: 50 px each
+    colours = {'first': PALETTE[0], 'second': PALETTE[1], 'third': PALETTE[2]}
+    assert missing_colours(img, colours, 50) == ['third']
+    assert missing_colours(img, colours, 51) == ['first', 'second', 'third']
+    with pytest.raises(ValueError):
+        missing_colours(img, colours, 0)
 
 
 def test_render_area_of_a_screen_without_rviz_is_empty():
