@@ -4,11 +4,11 @@ Run: `/usr/bin/python3 bench/make_stage_worlds.py [OUT_DIR] [N ...]` with the de
 sourced (or PYTHONPATH=src/stage/stage_lite/src); defaults: OUT_DIR build/stage_worlds,
 N = 20 50 100. Prints the paths written.
 
-The worlds copy the lesson's (world/willow-multi-erratic.world: resolution, interval_sim, the
-floor plan with its size and pose, the erratic and topurg definitions) and stand the robots on
-free floor at least 1.2 m from every wall and from each other, chosen deterministically (a
-fixed-seed shuffle of the free places), each with a fixed-seed yaw. The floor plan is named by
-absolute path, so the worlds load from any folder.
+The worlds copy the lesson's (src/stage_multi/world/willow-multi-erratic.world: resolution,
+interval_sim, the floor plan with its size and pose, the erratic and topurg definitions) and
+stand the robots on free floor at least 1.2 m from every wall and from each other, chosen
+deterministically (a fixed-seed shuffle of the free places), each with a fixed-seed yaw. The
+floor plan is named by absolute path, so the worlds load from any folder.
 """
 
 import math
@@ -20,7 +20,7 @@ from scipy.ndimage import distance_transform_edt
 from stage_lite.world import load_world
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-WORLD_DIR = os.path.join(HERE, '..', 'src', 'stage', 'stage_lite', 'world')
+WORLD_DIR = os.path.join(HERE, '..', 'src', 'stage_multi', 'world')
 LESSON = os.path.join(WORLD_DIR, 'willow-multi-erratic.world')
 CLEARANCE_M = 1.2       # from walls and between robot centres (the issue's figure)
 CELL_M = 0.1            # candidate places on a 10 cm lattice

@@ -1,8 +1,7 @@
 """Ray casts with ranges known in closed form: a square room from its centre, grazing a corner,
 rotated boxes, misses; checked against a brute-force walk, and the fast march against a plain
-cell-by-cell walk on random poses in small rooms and on the office plan."""
+cell-by-cell walk on random poses in small rooms and on an office-sized floor plan."""
 import math
-import os
 
 import numpy as np
 import pytest
@@ -174,15 +173,65 @@ def test_matches_reference_in_small_rooms(seed):
     check_against_reference(f, pts[:, 0], pts[:, 1], angs, 0.7)
 
 
+# An office-sized plan placed as the lesson places its own (stage_multi's world/): 540 x 587 px
+# of 0.1 m on 54 x 58.7 m turned by 90 degrees, on the 2 cm grid, with an erratic's laser.
+OFFICE_WORLD = '''resolution 0.02
+model( bitmap "plan.pgm" size [54.0 58.7 0.5] pose [-29.35 27.0 0 90.0] boundary 1 )
+position( size [0.35 0.35 0.25] pose [-11.5 23.5 0 0]
+  ranger( sensor( range [0 30] fov 270.25 samples 1081 ) size [0.05 0.05 0.1] ) )
+'''
+PLAN_ROWS, PLAN_COLS = 587, 540
+FREE, WALL = 254, 0
+
+
+def office_like_plan(seed=7):
+    """A PGM floor plan (rows x cols) drawn from seed: an outer wall, rows and columns of rooms
+    with a door in each stretch of wall, square pillars, a hall and a corridor longer than a
+    laser's range, and diagonal walls (which the lesson's plan has none of); walls 2 px thick."""
+    rng = np.random.default_rng(seed)
+    img = np.full((PLAN_ROWS, PLAN_COLS), FREE, np.uint8)
+    img[:2, :] = img[-2:, :] = img[:, :2] = img[:, -2:] = WALL
+    for r in range(60, PLAN_ROWS - 10, 60):
+        img[r:r + 2, :] = WALL
+        for c in range(0, PLAN_COLS, 90):
+            door = c + rng.integers(5, 75)
+            img[r:r + 2, door:door + 10] = FREE
+    for c in range(80, PLAN_COLS - 10, 80):
+        img[:, c:c + 2] = WALL
+        for r in range(0, PLAN_ROWS, 60):
+            door = r + rng.integers(5, 45)
+            img[door:door + 10, c:c + 2] = FREE
+    for _ in range(40):
+        r, c = rng.integers(5, PLAN_ROWS - 13), rng.integers(5, PLAN_COLS - 13)
+        img[r:r + 8, c:c + 8] = WALL
+    # a hall across the plan and a corridor along it, longer than the lasers' 30 m: misses
+    img[265:325, 2:-2] = FREE
+    img[2:-2, 245:265] = FREE
+    for c in range(40, PLAN_COLS - 40, 100):
+        img[291:299, c:c + 8] = WALL
+    for _ in range(12):
+        r0, c0 = rng.integers(20, PLAN_ROWS - 20), rng.integers(20, PLAN_COLS - 20)
+        a, n = rng.uniform(0, math.pi), rng.integers(30, 120)
+        t = np.arange(n)
+        rr = np.clip((r0 + t * math.sin(a)).astype(int), 0, PLAN_ROWS - 2)
+        cc = np.clip((c0 + t * math.cos(a)).astype(int), 0, PLAN_COLS - 2)
+        for dr in (0, 1):
+            for dc in (0, 1):
+                img[rr + dr, cc + dc] = WALL
+    return b'P5\n%d %d\n255\n' % (PLAN_COLS, PLAN_ROWS) + img.tobytes()
+
+
 @pytest.fixture(scope='module')
-def office():
-    here = os.path.dirname(os.path.abspath(__file__))
-    w = load_world(os.path.join(here, '..', '..', 'world', 'willow-multi-erratic.world'))
+def office(tmp_path_factory):
+    folder = tmp_path_factory.mktemp('office')
+    (folder / 'plan.pgm').write_bytes(office_like_plan())
+    (folder / 'office.world').write_text(OFFICE_WORLD)
+    w = load_world(str(folder / 'office.world'))
     return w._ray_groups[0][0]
 
 
 @pytest.mark.parametrize('seed', [0, 1, 2])
-def test_matches_reference_on_the_office_plan(office, seed):
+def test_matches_reference_on_an_office_sized_plan(office, seed):
     rng = np.random.default_rng(seed)
     pts = free_points(office, rng, 12).repeat(30, axis=0)
     angs = rng.uniform(-math.pi, math.pi, len(pts))

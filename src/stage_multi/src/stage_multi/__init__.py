@@ -1,0 +1,1 @@
+"""stage_multi: the Stage multi-robot lesson (robots driving straight until Stage stalls them)."""
