@@ -2,8 +2,8 @@
 
 Used by the tools (convoy_demo's roslaunch and rosbag record, rviz_snapshot's rviz and Xvfb),
 the rostest nodes and the benchmarks. Also what a benchmark reads of a process in /proc:
-cpu_ticks, rss_mb and peak_rss_mb; and the texts of the rospy log lines a process printed
-(rospy_texts).
+cpu_ticks, rss_mb, peak_rss_mb and the process tree (process_table, descendants); and the
+texts of the rospy log lines a process printed (rospy_texts).
 """
 import codecs
 import contextlib
@@ -53,6 +53,36 @@ def stat_cpu_ticks(stat_line):
     """utime + stime, in clock ticks, of a /proc/<pid>/stat line (the name may hold ') ')."""
     fields = stat_line.rsplit(')', 1)[1].split()
     return int(fields[STAT_UTIME]) + int(fields[STAT_STIME])
+
+
+def process_table():
+    """pid -> (parent pid, command line) of every process running now (from /proc)."""
+    table = {}
+    for pid in filter(str.isdigit, os.listdir('/proc')):
+        try:
+            with open('/proc/%s/stat' % pid) as f:
+                ppid = int(f.read().rsplit(')', 1)[1].split()[1])
+            with open('/proc/%s/cmdline' % pid, 'rb') as f:
+                cmdline = f.read().replace(b'\0', b' ').decode(errors='replace').strip()
+        except (OSError, IndexError, ValueError):
+            continue  # the process ended while we looked
+        table[int(pid)] = (ppid, cmdline)
+    return table
+
+
+def descendants(root, table=None):
+    """root and every process under it that runs now (a process_table() may be given)."""
+    table = process_table() if table is None else table
+    children = {}
+    for pid, (ppid, _) in table.items():
+        children.setdefault(ppid, []).append(pid)
+    pids, todo = [], [root]
+    while todo:
+        pid = todo.pop()
+        if pid in table:
+            pids.append(pid)
+        todo.extend(children.get(pid, ()))
+    return pids
 
 
 def cpu_ticks(pid):

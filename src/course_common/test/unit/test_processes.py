@@ -13,7 +13,9 @@ import pytest
 from course_common.processes import (
     ChildProcess,
     cpu_ticks,
+    descendants,
     peak_rss_mb,
+    process_table,
     rss_mb,
     run_to_exit,
     spawn,
@@ -84,6 +86,20 @@ def test_this_process_has_cpu_ticks_and_memory():
     rss = rss_mb(os.getpid())
     assert rss > 1.0  # a Python interpreter is several MB
     assert peak_rss_mb(os.getpid()) >= rss  # read after: the peak so far is never below
+
+
+def test_process_table_and_descendants_of_a_child_and_its_grandchild():
+    # sh starts sleep in the background and says its pid: child (sh) and grandchild (sleep)
+    with ChildProcess(['sh', '-c', 'sleep 30 & echo "grandchild $!"; wait']) as proc:
+        grandchild = int(proc.wait_line('grandchild ', DEADLINE_S).split()[1])
+        table = process_table()
+        assert table[os.getpid()][0] == os.getppid()
+        assert table[proc.pid] == (os.getpid(), 'sh -c sleep 30 & echo "grandchild $!"; wait')
+        assert table[grandchild] == (proc.pid, 'sleep 30')
+        assert sorted(descendants(proc.pid)) == sorted([proc.pid, grandchild])
+        assert descendants(grandchild, table) == [grandchild]
+        assert os.getpid() in descendants(os.getppid(), table)
+    assert descendants(proc.pid) == []  # stopped: gone, and its grandchild with it
 
 
 def test_lines_are_read_as_they_come_and_exit_code_is_returned():
