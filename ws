@@ -19,7 +19,8 @@ LINT_VENV="$ROOT/$BUILD_DIR/lint-venv"
 usage() {
   cat <<EOF
 usage: ./ws COMMAND [ARGS]
-  demo [ARGS]        deps, build, then the main demo (the convoy with its autopilot leader)
+  demo [ARGS]        deps, build, then the demos: the convoy with its autopilot leader (ARGS go
+                     to it), then the synchronisation lesson on Stage (build/demo/stage/)
   test               deps, build, lint, unit tests, integration tests, one summary line
   deps               install the missing Debian packages of tools/debian-packages.txt
   build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
@@ -197,7 +198,12 @@ cmd_demo() {
   build_step
   source_devel
   local_ros_network
+  # ARGS are the convoy demo's; a failing convoy demo ends ./ws demo with its exit code.
   rosrun convoy convoy_demo --out "$ROOT/$BUILD_DIR/demo" "$@"
+  # `./ws demo --help` asked for the convoy demo's usage, not for a run of the next demo.
+  case " $* " in *" -h "* | *" --help "*) return 0 ;; esac
+  # Then the synchronisation lesson on the workspace's Stage, headless.
+  rosrun multi_sync stage_demo --out "$ROOT/$BUILD_DIR/demo/stage"
 }
 
 cmd_bench() {

@@ -18,7 +18,7 @@ TEAM_SIZE = 4
 
 
 class TestLesson(unittest.TestCase):
-    """rosrun multi_sync monitor N after roslaunch multi_sync multi_sync.launch, as taught."""
+    """rosrun multi_sync monitor N after roslaunch multi_sync multi_sync_turtlesim.launch."""
 
     def test_lesson(self):
         n = TEAM_SIZE

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""multi_sync.launch markers:=true: every robot of the team in tf, and the team's rviz view."""
+"""multi_sync_turtlesim.launch markers:=true: every robot in tf, and the team's rviz view."""
 
 import os
 import sys
@@ -30,7 +30,8 @@ class MultiSyncViewsTest(unittest.TestCase):
         check.wait_agree(START_DEADLINE_S)
 
     def test_rviz_shows_the_team_view(self):
-        path = os.path.join(rospkg.RosPack().get_path('multi_sync'), 'rviz', 'multi_sync.rviz')
+        path = os.path.join(rospkg.RosPack().get_path('multi_sync'), 'rviz',
+                            'multi_sync_turtlesim.rviz')
         with RvizOnXvfb(path, 'rviz_under_test') as rviz:
             rviz.capture(os.path.join(results_dir(), 'multi_sync_rviz.png'), robots=len(ROBOTS),
                          labels=len(ROBOTS), timeout_s=RVIZ_DEADLINE_S)

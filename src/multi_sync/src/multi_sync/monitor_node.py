@@ -1,25 +1,28 @@
 """The lesson's monitor: counts ready robots on team_status and broadcasts GO."""
 import threading
+import time
 
 import rospy
 from course_common.command_line import parse_argv_or_exit
 from course_common.publishers import unqueued_publisher
+from course_common.robot_ids import parse_team_size
 from course_common.rospy_internals import caller_id, connection_ids
 from course_common.startup import init_node
 
 from multi_sync.go_latch import GoLatch
 from multi_sync.msg import RobotStatus
-from multi_sync.team import MONITOR_FRAME_ID, Outcome, TeamBook, parse_team_size
+from multi_sync.team import MONITOR_FRAME_ID, Outcome, TeamBook
 
 # Robots re-announce every second until GO; a backlog this deep absorbs a whole team's
 # announcements (20 robots, several rounds) without dropping one.
 STATUS_QUEUE = 100
 # A freshly started monitor hears the robots (it connects to their publishers) before the
 # robots have connected to its own publisher. GO waits until every ready robot listens, so
-# all receive the same GO message at once, but no longer than this (a robot that subscribes
+# all receive the same GO message at once, and on sim time until the first /clock (else its
+# stamp would read 0), but no longer than this, in wall seconds (a robot that subscribes
 # later gets GO as it connects).
 CONNECT_WAIT_S = 3.0
-# How often a pending GO re-checks the deadline above.
+# How often a pending GO checks its conditions and the deadline above (wall clock).
 CHECK_PERIOD_S = 0.05
 
 
@@ -44,7 +47,8 @@ class MonitorNode:
     Publishes:
         team_status (multi_sync/RobotStatus): GO, header.stamp = now,
             header.frame_id = "monitor", robot_id = -1, is_ready = true. It is sent once
-            every ready robot has subscribed (at most CONNECT_WAIT_S after the last ready),
+            every ready robot has subscribed and, on sim time, the clock runs (at most
+            CONNECT_WAIT_S after the last ready),
             to every subscriber in one pass, and to each later subscriber as it connects:
             every subscriber gets exactly one GO (multi_sync.go_latch says why this is not
             rospy's latch). A ready report after GO is logged and not answered.
@@ -60,7 +64,6 @@ class MonitorNode:
         # Synchronous: GO goes out to every robot from this thread in one pass.
         self._pub = unqueued_publisher('team_status', RobotStatus,
                                        subscriber_listener=_GoOnConnect(self._on_subscriber))
-        self._timer = rospy.Timer(rospy.Duration(CHECK_PERIOD_S), self._on_timer)
         rospy.loginfo('Waiting for robots to connect...')
         self._sub = rospy.Subscriber('team_status', RobotStatus, self._on_status,
                                      queue_size=STATUS_QUEUE, tcp_nodelay=True)
@@ -83,13 +86,16 @@ class MonitorNode:
             send(go)
 
     def _try_go(self, force=False):
-        """Publish the pending GO if every ready robot listens (or force); log it."""
+        """Publish the pending GO if every ready robot listens and the clock runs (or force);
+        log it. Returns False while GO is still pending."""
         with self._lock:
             if self._go_deadline is None:
-                return
+                return True
             missing = self._book.unconnected(connection_ids(self._pub))
-            if missing and not force:
-                return
+            # Zero only on sim time before the first /clock.
+            no_clock = rospy.get_rostime().is_zero()
+            if (missing or no_clock) and not force:
+                return False
             self._go_deadline = None
             # Publish first, log after: robots start on this message.
             self._publish_go()
@@ -97,23 +103,34 @@ class MonitorNode:
         if missing:
             rospy.logwarn('GO sent before robot(s) %s subscribed to %s: they get it when they do'
                           % (', '.join(map(str, missing)), self._pub.resolved_name))
+        if no_clock:
+            rospy.logwarn('GO sent before the first /clock (use_sim_time is set): stamped 0')
+        return True
 
-    def _on_timer(self, _event):
-        with self._lock:
-            late = self._go_deadline is not None and rospy.get_time() > self._go_deadline
-        if late:
-            self._try_go(force=True)
+    def _go_when_ready(self):
+        """Until the pending GO is out: try every CHECK_PERIOD_S, force it at the deadline.
+
+        A thread on the wall clock: connections come up in wall time, and on sim time a
+        rospy.Timer would not run before the first /clock.
+        """
+        while not rospy.is_shutdown():
+            with self._lock:
+                deadline = self._go_deadline
+            if deadline is None or self._try_go(force=time.monotonic() >= deadline):
+                return
+            time.sleep(CHECK_PERIOD_S)
 
     def _on_status(self, msg):
         sender = caller_id(msg)
         with self._lock:
             outcome = self._book.report(msg.robot_id, msg.is_ready, msg.header.frame_id, sender)
             if outcome is Outcome.TEAM_READY:
-                self._go_deadline = rospy.get_time() + CONNECT_WAIT_S
+                self._go_deadline = time.monotonic() + CONNECT_WAIT_S
         if outcome in (Outcome.NEW_READY, Outcome.TEAM_READY):
             rospy.loginfo('Robot %d is ready!', msg.robot_id)
-        if outcome is Outcome.TEAM_READY:
-            self._try_go()
+        if outcome is Outcome.TEAM_READY and not self._try_go():
+            threading.Thread(target=self._go_when_ready, name='go_when_ready',
+                             daemon=True).start()
         elif outcome is Outcome.AFTER_GO:
             rospy.loginfo_throttle_identical(
                 5.0, 'Robot %d reported ready after GO: it gets GO as it subscribes, not again'

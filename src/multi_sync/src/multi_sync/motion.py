@@ -1,7 +1,9 @@
-"""Driving a robot forward safely: wall bumper, teammates' positions, team layout (no rospy).
+"""Driving a robot forward safely: bumper, teammates' positions, team layout (no rospy).
 
-Frame: the simulator's world, metres, origin at the bottom-left corner, x right, y up,
-theta in radians counter-clockwise from +x (turtlesim's Pose convention).
+Frame: the simulator's world, metres, theta in radians counter-clockwise from +x. On turtlesim
+the origin is the bottom-left corner of its square world (x right, y up); on Stage it is
+Stage's world origin. The bumper takes the free distance ahead from the robot's sensor:
+turtlesim's square (distance_to_wall) or Stage's laser (multi_sync.laser_ahead).
 """
 import math
 from dataclasses import dataclass
@@ -9,8 +11,7 @@ from dataclasses import dataclass
 # turtlesim's square world and its middle, where turtlesim's first turtle starts.
 from course_common.arena import CENTRE_M, WORLD_SIZE_M
 from course_common.finite import is_finite_number
-
-from multi_sync.team import MAX_ROBOTS, valid_robot_id
+from course_common.robot_ids import MAX_ROBOTS, valid_robot_id
 
 # The lesson's robots stand 2 m apart in a 2x2 square; the grid keeps that spacing.
 GRID_STEP_M = 2.0
@@ -68,18 +69,17 @@ class TeamPositions:
     def update(self, robot_id, x, y, theta, stamp_s):
         """Store a teammate's position; return False for the robot's own (ignored).
 
-        Raises ValueError for an id outside 0..19 or a non-finite value. An older stamp than
-        the one stored is ignored (messages from one publisher arrive in order, but a robot
-        restarted with a wrong clock must not roll positions back).
+        Raises ValueError for an id outside 0..19 or a non-finite value. The latest message
+        wins whatever its stamp: one publisher's messages arrive in order, and a robot
+        restarted on the Stage lesson may stamp with another clock than before (a node that
+        started before stageros set /use_sim_time keeps wall time, one started after runs on
+        sim time), so stamps cannot order two runs of the same robot.
         """
         if not valid_robot_id(robot_id):
             raise ValueError('robot_id must be an integer in 0..%d, got %r'
                              % (MAX_ROBOTS - 1, robot_id))
         _check_finite(x=x, y=y, theta=theta, stamp_s=stamp_s)
         if robot_id == self.own_id:
-            return False
-        known = self._latest.get(robot_id)
-        if known is not None and stamp_s < known.stamp_s:
             return False
         self._latest[robot_id] = Teammate(robot_id, float(x), float(y), float(theta),
                                           float(stamp_s))
@@ -121,7 +121,12 @@ class TeamPositions:
 
 @dataclass(frozen=True)
 class DriveLimits:
-    """How a robot drives: speed (m/s), wall stop distance (m), teammate gap (m), world (m)."""
+    """How a robot drives: speed (m/s), bumper distance (m), teammate gap (m), world (m).
+
+    stop_distance_m and min_gap_m of 0 turn the bumper and the gap off: the robot drives on
+    until the simulator stops it (turtlesim clamps it at the wall, Stage stalls it).
+    world_size_m is turtlesim's square, which bounds the bumper distance.
+    """
 
     speed_mps: float = 0.2
     stop_distance_m: float = 0.5
@@ -144,34 +149,38 @@ class DriveLimits:
 
 @dataclass(frozen=True)
 class Decision:
-    """The forward speed to command now and why: 'clear', 'wall' or 'teammate'.
+    """The forward speed to command now and why: 'clear', 'wall' or 'teammate' (decide's),
+    or 'stale' (move_robot's own: its inputs went silent).
 
-    wall_m is the distance to the wall ahead; for 'teammate', teammate_id and gap_m name the
-    teammate in the way and how far it is.
+    ahead_m is the free distance ahead the sensor gave (the wall on turtlesim, what the
+    laser sees on Stage); for 'teammate', teammate_id and gap_m name the teammate in the way
+    and how far it is.
     """
 
     linear_mps: float
     reason: str
-    wall_m: float
+    ahead_m: float
     teammate_id: int = -1
     gap_m: float = math.inf
 
 
-def decide(x, y, theta, limits, team=None):
+def decide(x, y, theta, ahead_m, limits, team=None):
     """Forward speed for a robot at (x, y, theta): full speed unless a wall or teammate is near.
 
-    The bumper stops the robot once the wall straight ahead is at most
-    limits.stop_distance_m away; with team given, a teammate ahead closer than
-    limits.min_gap_m stops it too (it drives on when that teammate has moved away).
+    ahead_m is the free distance straight ahead as the robot's sensor measures it (m, inf
+    when nothing is in range). The bumper stops the robot once it is at most
+    limits.stop_distance_m; with team given, a teammate ahead closer than limits.min_gap_m
+    stops it too (it drives on when that teammate has moved away). Either limit at 0 is off.
     """
-    wall = distance_to_wall(x, y, theta, limits.world_size_m)
-    if wall <= limits.stop_distance_m:
-        return Decision(0.0, 'wall', wall)
+    if not (is_finite_number(ahead_m) or ahead_m == math.inf) or ahead_m < 0.0:
+        raise ValueError('ahead_m must be >= 0 m or inf, got %r' % (ahead_m,))
+    if limits.stop_distance_m > 0.0 and ahead_m <= limits.stop_distance_m:
+        return Decision(0.0, 'wall', ahead_m)
     if team is not None and limits.min_gap_m > 0.0:
         block = team.blocking(x, y, theta, limits.min_gap_m)
         if block is not None:
-            return Decision(0.0, 'teammate', wall, block[0].robot_id, block[1])
-    return Decision(limits.speed_mps, 'clear', wall)
+            return Decision(0.0, 'teammate', ahead_m, block[0].robot_id, block[1])
+    return Decision(limits.speed_mps, 'clear', ahead_m)
 
 
 def team_layout(team_size):

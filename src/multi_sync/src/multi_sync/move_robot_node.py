@@ -1,4 +1,5 @@
 """The lesson's move_robot: announce ready, wait for the monitor's GO, drive forward safely."""
+import math
 import threading
 import time
 from dataclasses import dataclass
@@ -8,22 +9,20 @@ from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
 from course_common.params import check_number
 from course_common.publishers import unqueued_publisher
+from course_common.robot_ids import parse_robot_id
 from course_common.startup import init_node
 from geometry_msgs.msg import Twist
-from turtlesim.msg import Pose
 
-from multi_sync.motion import WORLD_SIZE_M, DriveLimits, TeamPositions, decide
+from multi_sync.motion import WORLD_SIZE_M, Decision, DriveLimits, TeamPositions, decide
 from multi_sync.msg import RobotPosition, RobotStatus
-from multi_sync.team import MONITOR_FRAME_ID, parse_robot_id
+from multi_sync.robot_sensors import TURTLESIM, RobotSensors
+from multi_sync.team import MONITOR_FRAME_ID
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
 SHARED_QUEUE = 100
-# Without a pose this long, the robot subscribes to its pose topic again. The master tells a
-# subscriber about a new publisher (a turtle spawned after the robot started) once, by a
-# publisherUpdate call; rospy does not retry a lost one, so on a loaded machine a robot could
-# wait forever (seen once in team20: robot 3 never connected). Subscribing again asks the
-# master for the publishers it has now.
-POSE_RESUBSCRIBE_S = 5.0
+# A GO stamped this close to the wall clock was stamped on wall time, like this robot's log
+# line; on the Stage lesson the monitor runs on sim time, which starts at 0.
+WALL_STAMP_S = 3600.0
 
 
 @dataclass(frozen=True)
@@ -34,6 +33,8 @@ class MoveRobotConfig:
     rate_hz: float = 10.0
     stop_distance_m: float = 0.5
     min_gap_m: float = 1.0
+    cone_half_angle_rad: float = 0.35
+    input_timeout_s: float = 2.0
     world_size_m: float = WORLD_SIZE_M
     announce_period_s: float = 1.0
     report_period_s: float = 5.0
@@ -45,6 +46,8 @@ _RANGES = {
     'rate_hz': (0.0, 1000.0, False),
     'stop_distance_m': (0.0, WORLD_SIZE_M / 2, True),
     'min_gap_m': (0.0, WORLD_SIZE_M, True),
+    'cone_half_angle_rad': (0.0, math.pi, False),
+    'input_timeout_s': (0.0, 3600.0, True),
     'world_size_m': (0.0, 1000.0, False),
     'announce_period_s': (0.0, 60.0, False),
     'report_period_s': (0.0, 3600.0, False),
@@ -81,14 +84,21 @@ class _AnnounceOnConnect(rospy.SubscribeListener):
 class MoveRobotNode:
     """One robot of the team: ready, wait for GO, then forward until a wall or teammate.
 
-    The robot is ready once it knows its pose. It then publishes its ready status at once,
-    again every announce_period_s until GO, and to every team_status subscriber that
-    connects (so a monitor started or restarted at any time counts it). GO is any
-    team_status message with header.frame_id "monitor": the first one starts the 10 Hz
-    drive loop and sends the first command from the callback itself.
+    The robot runs on turtlesim or on Stage, whichever publishes its pose
+    (multi_sync.robot_sensors). It is ready once it knows its pose and, on Stage, what its
+    laser sees. It then publishes its ready status at once, again every announce_period_s
+    until GO, and to every team_status subscriber that connects (so a monitor started or
+    restarted at any time counts it). GO is any team_status message with header.frame_id
+    "monitor": the first one starts the 10 Hz drive loop and sends the first command from the
+    callback itself.
 
     Subscribes:
-        robot_<id>/pose (turtlesim/Pose): the robot's pose, for the bumper.
+        robot_<id>/pose (turtlesim/Pose): the robot's pose on turtlesim; the bumper measures
+            to the edge of turtlesim's square world.
+        robot_<id>/base_pose_ground_truth (nav_msgs/Odometry): the robot's pose on Stage.
+        robot_<id>/base_scan (sensor_msgs/LaserScan): the bumper on Stage: the nearest
+            reading within cone_half_angle_rad of the heading.
+        (Once the first pose names the simulator, the other one's topics are unsubscribed.)
         team_status (multi_sync/RobotStatus): GO from the monitor; teammates' reports ignored.
         team_positions (multi_sync/RobotPosition): teammates' positions (own ignored).
     Publishes:
@@ -100,8 +110,16 @@ class MoveRobotNode:
     Parameters (private):
         ~speed_mps (float, 0.2 m/s): forward speed, the lesson's 0.2.
         ~rate_hz (float, 10 Hz): drive loop rate, the lesson's 10.
-        ~stop_distance_m (float, 0.5 m): the bumper stops the robot this far from the wall ahead.
+        ~stop_distance_m (float, 0.5 m): the bumper stops the robot this far from the wall
+            ahead (turtlesim: from the robot's centre; Stage: from its laser); 0 disables.
         ~min_gap_m (float, 1.0 m): stop while a teammate ahead is closer than this; 0 disables.
+            Teammates' positions come from team_positions (Stage's lasers cannot see them).
+        ~cone_half_angle_rad (float, 0.35 rad): Stage's bumper looks at the beams within this
+            angle of the heading (0.35 rad covers the erratic's 0.35 m width at 0.5 m).
+        ~input_timeout_s (float, 2.0 s of wall time): after GO, stop (and subscribe again
+            every 5 s) while the pose or, on Stage, the scan has been silent this long: the
+            bumper must not drive on what it saw seconds ago (a simulator that died, a
+            network cut). 0 disables.
         ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's).
         ~announce_period_s (float, 1.0 s): ready re-announcement period until GO.
         ~report_period_s (float, 5.0 s): how often the nearest teammate is logged.
@@ -114,16 +132,16 @@ class MoveRobotNode:
                                    config.world_size_m)
         self._team = TeamPositions(robot_id)
         self._lock = threading.Lock()
-        self._pose = None
         self._go = False
         self._go_stamp = None
+        self._go_arrived_wall = None
         self._moved = False
         self._reason = None
         self._drive_timer = None
         self._stopped = False  # shutting down: no more commands but the final stop
         self._deferred = []  # log lines held back from the GO callback until the first tick
-        self._pose_sub = None
-        self._pose_subscribed_at = time.monotonic()
+        self._sensors = RobotSensors(robot_id, config.cone_half_angle_rad, config.world_size_m,
+                                     self._on_ready)
         # Synchronous: the first command leaves within the GO callback, the final stop
         # before the process exits.
         self._cmd_pub = unqueued_publisher('robot_%d/cmd_vel' % robot_id, Twist)
@@ -131,21 +149,16 @@ class MoveRobotNode:
         self._status_pub = rospy.Publisher('team_status', RobotStatus, queue_size=10,
                                            subscriber_listener=_AnnounceOnConnect(self))
         rospy.on_shutdown(self._stop)
+        # reset=True: on sim time a restarted stageros sends /clock back to its start, which
+        # would end a plain rospy.Timer (ROSTimeMovedBackwardsException).
         self._announce_timer = rospy.Timer(rospy.Duration(config.announce_period_s),
-                                           self._on_announce_timer)
-        self._subscribe_pose()
+                                           self._on_announce_timer, reset=True)
+        self._sensors.subscribe()
         rospy.Subscriber('team_positions', RobotPosition, self._on_position,
                          queue_size=SHARED_QUEUE)
         # tcp_nodelay: GO is one small message; Nagle's algorithm could hold it back.
         rospy.Subscriber('team_status', RobotStatus, self._on_status, queue_size=SHARED_QUEUE,
                          tcp_nodelay=True)
-
-    def _subscribe_pose(self):
-        if self._pose_sub is not None:
-            self._pose_sub.unregister()
-        self._pose_sub = rospy.Subscriber('robot_%d/pose' % self._id, Pose, self._on_pose,
-                                          queue_size=1)
-        self._pose_subscribed_at = time.monotonic()
 
     # --- readiness -------------------------------------------------------------------------
     def _ready_msg(self):
@@ -157,30 +170,25 @@ class MoveRobotNode:
 
     def announce_to(self, send):
         """Send the ready status with send (a publish function) if the robot is ready."""
-        with self._lock:
-            ready = self._pose is not None
-        if ready:
+        if self._sensors.fix() is not None:
             send(self._ready_msg())
 
-    def _on_pose(self, msg):
+    def _on_ready(self):
         with self._lock:
-            first = self._pose is None
-            self._pose = (msg.x, msg.y, msg.theta)
             go = self._go
-        if first and not go:
+        if not go:
             self._status_pub.publish(self._ready_msg())
             rospy.loginfo('Robot %d published ready status', self._id)
 
     def _on_announce_timer(self, _event):
         with self._lock:
-            go, ready = self._go, self._pose is not None
+            go = self._go
         if go:
             return
-        if not ready:
-            rospy.logwarn_throttle(5.0, 'Robot %d: no pose yet on %s'
-                                   % (self._id, rospy.resolve_name('robot_%d/pose' % self._id)))
-            if time.monotonic() - self._pose_subscribed_at >= POSE_RESUBSCRIBE_S:
-                self._subscribe_pose()
+        missing = self._sensors.missing()
+        if missing:
+            rospy.logwarn_throttle(5.0, 'Robot %d: %s' % (self._id, missing))
+            self._sensors.resubscribe_if_silent(self._cfg.input_timeout_s)
             return
         self._status_pub.publish(self._ready_msg())
         rospy.loginfo('Robot %d: waiting for team', self._id)
@@ -193,13 +201,14 @@ class MoveRobotNode:
                 return
             self._go = True
             self._go_stamp = msg.header.stamp
+            self._go_arrived_wall = time.time()
             # Event-driven start: the first command leaves from this callback. Everything
             # else (log lines, sharing the position) waits for the first tick, so that a
             # whole team starting at once does not hold each other's first commands up.
             self._deferred.append("Robot %d: Team is ready. Let's move!" % self._id)
             self._deferred.extend(self._command_locked())
             self._drive_timer = rospy.Timer(rospy.Duration(1.0 / self._cfg.rate_hz),
-                                            self._on_tick)
+                                            self._on_tick, reset=True)
         self._announce_timer.shutdown()
 
     # --- driving ---------------------------------------------------------------------------
@@ -209,24 +218,34 @@ class MoveRobotNode:
             logs.extend(self._command_locked())
             logs.extend(self._share_locked())
         self._log(logs)
+        # Outside the lock: subscribing talks to the master.
+        self._sensors.resubscribe_if_silent(self._cfg.input_timeout_s)
 
     def _command_locked(self):
-        """Command the robot from its latest pose; return the log lines for after the lock."""
-        if self._pose is None or self._stopped:
+        """Command the robot from its latest fix; return the log lines for after the lock."""
+        fix = self._sensors.fix()
+        if fix is None or self._stopped:
             return []
-        x, y, theta = self._pose
-        decision = decide(x, y, theta, self._limits, self._team)
+        stale = self._sensors.stale(self._cfg.input_timeout_s) \
+            if self._cfg.input_timeout_s > 0.0 else ''
+        if stale:
+            decision = Decision(0.0, 'stale', fix.ahead_m)
+        else:
+            decision = decide(fix.x, fix.y, fix.theta, fix.ahead_m, self._limits, self._team)
         cmd = Twist()
         cmd.linear.x = decision.linear_mps
         self._cmd_pub.publish(cmd)
         logs = []
         if decision.linear_mps > 0.0 and not self._moved:
             self._moved = True
-            delay_ms = (rospy.Time.now() - self._go_stamp).to_sec() * 1e3
-            logs.append('Robot %d: first move command %.1f ms after GO' % (self._id, delay_ms))
+            logs.append(self._first_move_line())
         if decision.reason != self._reason:
             if decision.reason == 'wall':
-                logs.append('Robot %d: wall %.2f m ahead, stopping' % (self._id, decision.wall_m))
+                what = 'wall' if self._sensors.simulator() == TURTLESIM else 'laser: obstacle'
+                logs.append('Robot %d: %s %.2f m ahead, stopping'
+                            % (self._id, what, decision.ahead_m))
+            elif decision.reason == 'stale':
+                logs.append('Robot %d: %s, stopping' % (self._id, stale))
             elif decision.reason == 'teammate':
                 logs.append('Robot %d: robot %d is %.2f m ahead, waiting'
                             % (self._id, decision.teammate_id, decision.gap_m))
@@ -235,11 +254,27 @@ class MoveRobotNode:
             self._reason = decision.reason
         return logs
 
+    def _first_move_line(self):
+        """How long after GO the first move command left, measured on the wall clock.
+
+        From GO's stamp when the monitor stamped it on wall time (transport included);
+        otherwise (the Stage lesson's monitor runs on sim time, in 0.1 s steps) from the
+        moment GO arrived here.
+        """
+        now = time.time()
+        stamp = self._go_stamp.to_sec()
+        if abs(now - stamp) < WALL_STAMP_S:
+            return 'Robot %d: first move command %.1f ms after GO' % (self._id,
+                                                                      (now - stamp) * 1e3)
+        return ('Robot %d: first move command %.1f ms after GO arrived (GO stamped %.1f s, '
+                'sim time)' % (self._id, (now - self._go_arrived_wall) * 1e3, stamp))
+
     def _share_locked(self):
         """Publish the robot's position for its teammates; return the nearest-teammate log."""
-        if self._pose is None:
+        fix = self._sensors.fix()
+        if fix is None:
             return []
-        x, y, theta = self._pose
+        x, y, theta = fix.x, fix.y, fix.theta
         position = RobotPosition()
         position.header.stamp = rospy.Time.now()
         position.header.frame_id = 'world'

@@ -5,11 +5,11 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.params import check_int, check_number
+from course_common.robot_ids import MAX_ROBOTS
 from course_common.startup import init_node
 from turtlesim.srv import Spawn
 
 from multi_sync.motion import team_layout
-from multi_sync.team import MAX_ROBOTS
 
 
 @dataclass(frozen=True)

@@ -48,6 +48,11 @@ def test_distance_to_wall_rejects_bad_input(args):
 LIMITS = DriveLimits(speed_mps=0.2, stop_distance_m=0.5, min_gap_m=1.0)
 
 
+def decide_in_arena(x, y, theta, limits=LIMITS, team=None):
+    """decide() as move_robot calls it on turtlesim: the free distance is the wall's."""
+    return decide(x, y, theta, distance_to_wall(x, y, theta), limits, team)
+
+
 @pytest.mark.parametrize('x, theta, linear, reason', [
     (5.0, 0.0, 0.2, 'clear'),
     (W - 0.51, 0.0, 0.2, 'clear'),
@@ -56,9 +61,35 @@ LIMITS = DriveLimits(speed_mps=0.2, stop_distance_m=0.5, min_gap_m=1.0)
     (W - 0.2, math.pi, 0.2, 'clear'),  # the wall is behind: drive away from it
 ])
 def test_bumper(x, theta, linear, reason):
-    decision = decide(x, 5.0, theta, LIMITS)
+    decision = decide_in_arena(x, 5.0, theta)
     assert decision.linear_mps == pytest.approx(linear, abs=TOL)
     assert decision.reason == reason
+
+
+@pytest.mark.parametrize('ahead, linear, reason', [
+    (math.inf, 0.2, 'clear'),   # the laser sees nothing in range
+    (0.51, 0.2, 'clear'),
+    (0.5, 0.0, 'wall'),         # what the laser sees is at the stop distance: stop
+    (0.0, 0.0, 'wall'),
+])
+def test_bumper_on_a_sensor_distance(ahead, linear, reason):
+    decision = decide(-11.5, 23.5, 0.0, ahead, LIMITS)
+    assert (decision.linear_mps, decision.reason) == (pytest.approx(linear, abs=TOL), reason)
+    assert decision.ahead_m == ahead
+
+
+@pytest.mark.parametrize('ahead', [0.0, 0.075, 0.3])
+def test_zero_stop_distance_turns_the_bumper_off(ahead):
+    # the lesson's robot: straight on until the simulator stops it
+    lesson = DriveLimits(speed_mps=0.2, stop_distance_m=0.0, min_gap_m=0.0)
+    team = _team(0, (1, 0.3, 0.0))
+    assert decide(0.0, 0.0, 0.0, ahead, lesson, team).reason == 'clear'
+
+
+@pytest.mark.parametrize('ahead', [math.nan, -0.1, -math.inf, None, True])
+def test_bad_sensor_distance_is_refused(ahead):
+    with pytest.raises(ValueError):
+        decide(0.0, 0.0, 0.0, ahead, LIMITS)
 
 
 @pytest.mark.parametrize('kwargs', [
@@ -103,7 +134,7 @@ def test_nearest_teammate(mates, expected_id, expected_d):
 ])
 def test_teammate_blocking(mate, theta, blocked):
     team = _team(0, mate)
-    decision = decide(5.0, 5.0, theta, LIMITS, team)
+    decision = decide_in_arena(5.0, 5.0, theta, team=team)
     assert (decision.reason == 'teammate') == blocked
     assert decision.linear_mps == pytest.approx(0.0 if blocked else 0.2, abs=TOL)
     if blocked:
@@ -112,19 +143,22 @@ def test_teammate_blocking(mate, theta, blocked):
 
 def test_wall_wins_over_teammate_and_zero_gap_disables():
     team = _team(0, (1, 10.6, 5.0))
-    assert decide(10.7 - 0.2, 5.0, 0.0, LIMITS, team).reason == 'teammate'
-    assert decide(W - 0.3, 5.0, 0.0, LIMITS, team).reason == 'wall'
+    assert decide_in_arena(10.7 - 0.2, 5.0, 0.0, team=team).reason == 'teammate'
+    assert decide_in_arena(W - 0.3, 5.0, 0.0, team=team).reason == 'wall'
     no_gap = DriveLimits(speed_mps=0.2, stop_distance_m=0.5, min_gap_m=0.0)
-    assert decide(10.3, 5.0, 0.0, no_gap, team).reason == 'clear'
+    assert decide_in_arena(10.3, 5.0, 0.0, no_gap, team).reason == 'clear'
 
 
-def test_positions_keep_latest_and_ignore_older_and_own():
+def test_positions_keep_the_latest_message_and_ignore_own():
     team = TeamPositions(2)
     assert team.update(1, 1.0, 1.0, 0.0, 5.0)
     assert team.update(1, 2.0, 1.0, 0.0, 6.0)
-    assert not team.update(1, 9.0, 9.0, 0.0, 5.5)  # older than the stored one
     assert not team.update(2, 3.0, 3.0, 0.0, 7.0)  # own position
     assert [(m.robot_id, m.x) for m in team.teammates()] == [(1, 2.0)]
+    # robot 1 restarted on sim time after running on wall time: its stamps start again low,
+    # and its new positions must replace the old run's (a ghost would block its followers)
+    assert team.update(1, 2.5, 1.0, 0.0, 0.3)
+    assert [(m.robot_id, m.x, m.stamp_s) for m in team.teammates()] == [(1, 2.5, 0.3)]
 
 
 @pytest.mark.parametrize('args', [
@@ -172,7 +206,7 @@ def test_layout_fits_world_is_distinct_and_keeps_spacing(size):
         team = TeamPositions(i)
         for j, (mx, my, _) in enumerate(layout):
             team.update(j, mx, my, 0.0, 0.0)
-        assert decide(x, y, theta, LIMITS, team).reason == 'clear'
+        assert decide_in_arena(x, y, theta, team=team).reason == 'clear'
 
 
 @pytest.mark.parametrize('size', [0, 21, 4.0, None, True])

@@ -26,6 +26,7 @@ class Team:
         self.hosts = hosts
         self.log_dir = str(log_dir)
         self.procs = {}
+        self.started_at = {}  # name: wall time just before its start (nothing of it is older)
         os.makedirs(self.log_dir, exist_ok=True)
         atexit.register(self.close)
 
@@ -43,6 +44,7 @@ class Team:
         on_line: called with each line of its output (stdout and stderr)."""
         if name in self.procs:
             raise ValueError('a process named %s already runs' % name)
+        self.started_at[name] = time.time()
         proc = ChildProcess(self.hosts.argv(i, command), env=self.env(i, extra_env),
                             log_path=self.log_path(name), stop_timeout_s=STOP_WAIT_S,
                             on_line=on_line).start()
@@ -90,7 +92,7 @@ class Team:
 
 
 class Probe:
-    """The events of a team_probe_node started by Team.start_probe, as they arrive."""
+    """The events of a team_probe_node (started on a host through Team.start), as they arrive."""
 
     def __init__(self, team, name, i, args):
         self._lock = threading.Lock()
@@ -151,6 +153,22 @@ class Probe:
     def still(self, robot, window_s=0.5):
         """True when robot has poses but they did not change for window_s seconds."""
         return self.last_pose(robot) is not None and not self.moving(robot, window_s)
+
+    def stopped(self, robot, window_s=0.5):
+        """still, and the simulator applies no speed: the robot stands because it was told to."""
+        return self.still(robot, window_s) and self.last_pose(robot)['v'] == 0.0
+
+    def stalled(self, robot, window_s=0.5):
+        """still although the simulator applies a speed: pushing against something (Stage)."""
+        return self.still(robot, window_s) and self.last_pose(robot)['v'] != 0.0
+
+    def stalled_poses(self, robot, eps_m=1e-4):
+        """The poses at which robot had not moved since the one before although the simulator
+        applied a speed (meaningful with every pose printed, --pose-period 0)."""
+        poses = self.events('pose', robot)
+        return [after for before, after in zip(poses[:-1], poses[1:], strict=True)
+                if after['v'] != 0.0
+                and math.hypot(after['x'] - before['x'], after['y'] - before['y']) <= eps_m]
 
     def gap(self, leader, follower):
         """Distance between the latest poses of two robots, or None."""

@@ -9,6 +9,10 @@ from course_common.waiting import wait_for
 from multihost.harness import Probe
 
 MULTI_SYNC_ROBOTS = ['robot_0', 'robot_1', 'robot_2', 'robot_3']
+# multi_sync's two simulators: the lesson's Stage (multi_sync.launch) and turtlesim
+# (multi_sync_turtlesim.launch); the robots' launch is the same on both.
+TURTLESIM, STAGE = 'turtlesim', 'stage'
+MULTI_SYNC_SIM_LAUNCH = {TURTLESIM: 'multi_sync_turtlesim.launch', STAGE: 'multi_sync.launch'}
 CONVOY_ROBOTS = ['robot1', 'robot2', 'robot3']
 # The lesson's layout across three hosts; ONE_HOST puts every role on host 1.
 MULTI_SYNC_HOSTS = {'sim': 1, 'monitor': 1, 'robots_01': 2, 'robots_23': 3}
@@ -20,22 +24,30 @@ def one_host(layout):
     return dict.fromkeys(layout, 1)
 
 
-def start_master(team, robots, status=False, pose_period_s=0.1):
+def start_master(team, robots, status=False, pose_period_s=0.1, stage=False):
     """roscore on host 1 and a probe there; returns the probe once the master answers it."""
     team.start('roscore', 1, ['roscore', '-p', '11311'])
     args = ['--robots', *robots, '--pose-period', str(pose_period_s)]
-    probe = Probe(team, 'probe', 1, args + (['--status'] if status else []))
+    args += (['--status'] if status else []) + (['--stage'] if stage else [])
+    probe = Probe(team, 'probe', 1, args)
     wait_for(probe.ready, STARTUP_S, 'the master on host 1 to answer the probe (%s)'
              % team.log_path('roscore'))
     return probe
 
 
-def start_multi_sync(team, layout=None):
-    """The lesson: simulator, robots 0-1, robots 2-3, then (once all are ready) the monitor."""
+def start_multi_sync(team, layout=None, simulator=TURTLESIM):
+    """The lesson: simulator, robots 0-1, robots 2-3, then (once all are ready) the monitor.
+
+    On Stage the probe prints every pose (Stage's 10 Hz steps; turtlesim's 62.5 Hz poses are
+    thinned to 10 Hz) and stageros runs headless, as on a robot lab's master without a screen.
+    """
     layout = layout or MULTI_SYNC_HOSTS
-    probe = start_master(team, MULTI_SYNC_ROBOTS, status=True)
+    stage = simulator == STAGE
+    probe = start_master(team, MULTI_SYNC_ROBOTS, status=True, stage=stage,
+                         pose_period_s=0.0 if stage else 0.1)
     team.start('sim', layout['sim'],
-               ['roslaunch', 'multi_sync', 'multi_sync.launch', 'robots:=false'])
+               ['roslaunch', 'multi_sync', MULTI_SYNC_SIM_LAUNCH[simulator], 'robots:=false'],
+               extra_env={'DISPLAY': None} if stage else None)
     team.start('robots_01', layout['robots_01'],
                ['roslaunch', 'multi_sync', 'robots.launch', 'id:=0', 'team_size:=2'])
     team.start('robots_23', layout['robots_23'],

@@ -47,13 +47,24 @@ def test_not_an_rviz_file(text):
         display_topics(text)
 
 
-@pytest.mark.parametrize('path, topics', [
-    ('turtle_lite/turtle_lite/rviz/turtlesim.rviz', ['/lesson_markers', '/tf', '/tf_static']),
-    ('multi_sync/rviz/multi_sync.rviz', ['/lesson_markers', '/tf', '/tf_static']),
-    ('convoy/rviz/convoy.rviz', ['/convoy_gaps', '/lesson_markers', '/tf', '/tf_static']),
+STAGE_ROBOTS = range(4)
+
+
+@pytest.mark.parametrize('path, topics, frame', [
+    ('turtle_lite/turtle_lite/rviz/turtlesim.rviz', ['/lesson_markers', '/tf', '/tf_static'],
+     'world'),
+    ('multi_sync/rviz/multi_sync_turtlesim.rviz', ['/lesson_markers', '/tf', '/tf_static'],
+     'world'),
+    ('convoy/rviz/convoy.rviz', ['/convoy_gaps', '/lesson_markers', '/tf', '/tf_static'],
+     'world'),
+    # The Stage lesson: stageros's /map (~publish_map) and each robot's scan and ground truth.
+    ('multi_sync/rviz/multi_sync.rviz',
+     sorted(['/map', '/tf', '/tf_static']
+            + ['/robot_%d/base_scan' % i for i in STAGE_ROBOTS]
+            + ['/robot_%d/base_pose_ground_truth' % i for i in STAGE_ROBOTS]), 'map'),
 ])
-def test_the_lessons_files(path, topics):
+def test_the_lessons_files(path, topics, frame):
     with open(os.path.join(SRC, path)) as f:
         text = f.read()
     assert display_topics(text) == topics
-    assert fixed_frame(text) == 'world'
+    assert fixed_frame(text) == frame
