@@ -17,7 +17,7 @@ import rospkg
 from course_common.angles import yaw_from_quaternion
 from course_common.processes import ROSPY_LINE
 from course_common.testing import spawn, wait_for
-from course_common.testing.recorders import Recorder
+from course_common.testing.recorders import Recorder, stamp_ns
 from geometry_msgs.msg import Twist
 from multi_sync.team import MONITOR_FRAME_ID
 from nav_msgs.msg import Odometry
@@ -53,10 +53,6 @@ def lesson_world():
 def start_stageros(stop_timeout_s=None):
     """`rosrun stage_ros stageros -g <the lesson's world>`, running (a ChildProcess: stop())."""
     return spawn([*STAGEROS, '-g', lesson_world()], stop_timeout_s=stop_timeout_s)
-
-
-def stamp_ns(msg):
-    return msg.header.stamp.secs * 1_000_000_000 + msg.header.stamp.nsecs
 
 
 def pose_of(odometry):

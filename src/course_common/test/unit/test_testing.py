@@ -16,7 +16,11 @@ from course_common.testing import (
     numbers_in,
     results_dir,
 )
+from course_common.testing.recorders import stamp_ns
 from course_common.xvfb import Xvfb, display_number
+from genpy import Time
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
 
 COUNT = re.compile(r'^hello world (\d+)$')
 TIME = re.compile(r'^hello world (\d+\.\d+)$')
@@ -122,3 +126,10 @@ def test_xvfb_starts_on_a_free_display_and_stops():
         assert first.env()['DISPLAY'] == first.display
         assert first.alive()
     assert not first.alive() and not second.alive()
+
+
+def test_stamp_ns_of_a_header_and_of_a_clock_is_exact():
+    odom = Odometry()
+    odom.header.stamp = Time(12, 300000000)  # Stage's step 123: a whole 100 ms
+    assert stamp_ns(odom) == 12_300_000_000
+    assert stamp_ns(Clock(clock=Time(0, 100000000))) == 100_000_000

@@ -40,11 +40,6 @@ def world(name):
     return os.path.join(WORLDS, name)
 
 
-def stamp_ns(msg):
-    stamp = msg.header.stamp if hasattr(msg, 'header') else msg.clock
-    return stamp.secs * 1_000_000_000 + stamp.nsecs
-
-
 class Recorder(TopicRecorder):
     """course_common's Recorder with the waits the stage tests use."""
 

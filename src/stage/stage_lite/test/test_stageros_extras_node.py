@@ -6,6 +6,7 @@ import tempfile
 import numpy as np
 import rospy
 import rostest
+from course_common.testing.recorders import stamp_ns
 from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import OccupancyGrid, Odometry
 from PIL import Image
@@ -32,10 +33,6 @@ TURN_RADPS = 0.3
 #: A load spike longer than the watchdog (0.25 s of wall time at 4 x) stops every robot; the
 #: shared-watchdog test then commands again, at most this many times.
 WATCHDOG_ATTEMPTS = 3
-
-
-def _stamp_ns(msg):
-    return msg.header.stamp.secs * 1_000_000_000 + msg.header.stamp.nsecs
 
 
 class StagerosExtrasTest(StageTestCase):
@@ -116,12 +113,12 @@ class StagerosExtrasTest(StageTestCase):
             turn.publish(Twist(angular=Vector3(0, 0, TURN_RADPS)))
             moving = odom.wait_where(lambda m: m.twist.twist.angular.z > 0, 'the turn')
             # Without the shared time robot1 reads 0 at moving + watchdog + 1 step.
-            beyond_ns = _stamp_ns(moving) + WATCHDOG_NS + 5 * STEP_NS
+            beyond_ns = stamp_ns(moving) + WATCHDOG_NS + 5 * STEP_NS
 
             def settled(beyond_ns=beyond_ns):
                 other.publish(Twist())
                 last = odom.latest()
-                if last.twist.twist.angular.z == 0 or _stamp_ns(last) >= beyond_ns:
+                if last.twist.twist.angular.z == 0 or stamp_ns(last) >= beyond_ns:
                     return last
                 return None
             last = wait_for(settled, EVENT_DEADLINE_S, 'robot1 past its own watchdog time',
@@ -130,9 +127,9 @@ class StagerosExtrasTest(StageTestCase):
                 kept_turning = True
                 break
         self.assertTrue(kept_turning, 'robot1 stopped while robot2 was being commanded')
-        stopped = odom.wait_where(lambda m: _stamp_ns(m) > _stamp_ns(last)
+        stopped = odom.wait_where(lambda m: stamp_ns(m) > stamp_ns(last)
                                   and m.twist.twist.angular.z == 0, 'robot1 stopped')
-        self.assertGreater(_stamp_ns(stopped), _stamp_ns(last))
+        self.assertGreater(stamp_ns(stopped), stamp_ns(last))
         rospy.ServiceProxy('/reset_positions', Empty)()
         odom.close()
 

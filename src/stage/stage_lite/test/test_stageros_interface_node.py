@@ -4,6 +4,7 @@ import math
 
 import rospy
 import rostest
+from course_common.testing.recorders import stamp_ns
 from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
@@ -17,7 +18,6 @@ from stage_support import (
     Recorder,
     StageTestCase,
     service_names,
-    stamp_ns,
     topic_types,
     wait_connected,
     wait_for,

@@ -3,6 +3,7 @@
 import time
 
 import rostest
+from course_common.testing.recorders import stamp_ns
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
 from sensor_msgs.msg import LaserScan
@@ -12,7 +13,6 @@ from stage_support import (
     Recorder,
     StageTestCase,
     service_names,
-    stamp_ns,
     topic_types,
     wait_for,
 )

@@ -3,6 +3,8 @@
 Recorder keeps a topic's messages (optionally only those `accept` lets through, only the
 newest `keep`), each with the caller id of its publisher; LogRecorder is a Recorder of
 /rosout that first connects to every node that logs, so no later line can be missed.
+stamp_ns reads a recorded message's stamp as an exact integer (simulated time compares
+exactly: stageros stamps whole 100 ms steps).
 """
 import threading
 
@@ -12,6 +14,11 @@ from rosgraph_msgs.msg import Log
 from course_common.rospy_internals import caller_id
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, wait_for
 from course_common.testing.master import publishers_of
+
+
+def stamp_ns(msg):
+    """The stamp of msg in integer nanoseconds: its header's, or a rosgraph_msgs/Clock's."""
+    return (msg.header.stamp if hasattr(msg, 'header') else msg.clock).to_nsec()
 
 
 class Recorder:
