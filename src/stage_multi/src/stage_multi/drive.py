@@ -8,7 +8,6 @@ from course_common.robot_ids import BAD_ROBOT_ID, valid_robot_id
 
 FORWARD_SPEED_MPS = 0.2  # the lesson's msg.linear.x = 0.2, m/s along the robot's heading
 RATE_HZ = 10.0  # the lesson's ros::Rate loop_rate(10)
-QUEUE_SIZE = 10  # the lesson's advertise<geometry_msgs::Twist>(..., 10)
 
 
 def _checked(robot_id):

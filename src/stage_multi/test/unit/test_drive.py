@@ -3,7 +3,6 @@ import pytest
 from course_common.robot_ids import BAD_ROBOT_ID
 from stage_multi.drive import (
     FORWARD_SPEED_MPS,
-    QUEUE_SIZE,
     RATE_HZ,
     cmd_vel_topic,
     node_name,
@@ -11,7 +10,7 @@ from stage_multi.drive import (
 
 
 def test_the_lessons_figures():
-    assert (FORWARD_SPEED_MPS, RATE_HZ, QUEUE_SIZE) == (0.2, 10.0, 10)
+    assert (FORWARD_SPEED_MPS, RATE_HZ) == (0.2, 10.0)
 
 
 @pytest.mark.parametrize('robot_id, node, topic', [
