@@ -19,7 +19,8 @@ import rostest
 from course_common.testing import ChildProcess, ScratchDirTestCase, results_dir, wait_for
 from course_common.testing.master import Roscore, subscribers_of
 from PIL import Image
-from team_watch import NodeProcess, TeamWatch
+from stage_watch import StageWatch
+from team_watch import NodeProcess
 from turtle_lite.rviz_screen import (
     colour_pixels,
     error_lines,
@@ -81,7 +82,6 @@ def config_path():
 
 class StageViewsTest(ScratchDirTestCase):
     TMP_PREFIX = 'test_stage_views_'
-    bag_path = None  # written by the live test, played back by the next one
 
     @classmethod
     def setUpClass(cls):
@@ -108,8 +108,13 @@ class StageViewsTest(ScratchDirTestCase):
         self.assertEqual(rviz.missing_topics(), [])
         self.assertEqual(error_lines(rviz.log()), [], rviz.log())
 
-    def test_1_live_run_in_rviz_and_recorded(self):
-        watch = TeamWatch(ROBOTS)
+    def test_live_run_in_rviz_then_its_bag_played_back(self):
+        # One test: the playback needs the run it records.
+        self.play_back(self.record_live_run())
+
+    def record_live_run(self):
+        """rviz on the lesson while rosbag records it and the monitor gives GO; the bag."""
+        watch = StageWatch(ROBOTS)
         self.addCleanup(watch.close)
         rviz = RvizOnXvfb(config_path(), 'rviz_live')
         self.addCleanup(rviz.close)
@@ -128,9 +133,10 @@ class StageViewsTest(ScratchDirTestCase):
 
         monitor = NodeProcess('monitor', str(ROBOTS))
         self.addCleanup(monitor.stop)
-        wait_for(watch.go_count, START_DEADLINE_S, "the monitor's GO", alive=monitor.alive)
+        wait_for(watch.gos, START_DEADLINE_S, "the monitor's GO", alive=monitor.alive)
         wait_for(watch.moved, DRIVE_DEADLINE_S, 'every robot to move after GO')
-        wait_for(watch.stopped, DRIVE_DEADLINE_S, 'every robot to stop (bumper or teammate)')
+        wait_for(lambda: all(watch.stopped(i) for i in watch.ids()), DRIVE_DEADLINE_S,
+                 'every robot to stop (bumper or teammate)')
 
         shot = self.wait_view(rviz, 'rviz showing the floor plan and the four scans (live)')
         Image.fromarray(shot).save(os.path.join(results_dir(), 'stage_rviz_live.png'))
@@ -143,11 +149,10 @@ class StageViewsTest(ScratchDirTestCase):
             self.assertIn(topic, topics)
             self.assertEqual(topics[topic].msg_type, msg_type, topic)
             self.assertGreater(topics[topic].message_count, 0, topic)
-        type(self).bag_path = bag_path
+        return bag_path
 
-    def test_2_bag_plays_back_into_rviz(self):
-        if self.bag_path is None:
-            self.fail('no bag: the live run (test_1) did not record one')
+    def play_back(self, bag_path):
+        """The bag into a fresh rviz on a fresh master with /use_sim_time: the view again."""
         # A master of this test's own: no Stage, no robots, only the bag. Roscore points this
         # process's ROS_MASTER_URI at it (rviz and the master queries follow); this node
         # stays on rostest's master.
@@ -162,7 +167,7 @@ class StageViewsTest(ScratchDirTestCase):
         self.addCleanup(rviz.close)
         rviz.wait_subscribed(RVIZ_DEADLINE_S)
 
-        player = ChildProcess(['rosrun', 'rosbag', 'play', self.bag_path],
+        player = ChildProcess(['rosrun', 'rosbag', 'play', bag_path],
                               log_path=os.path.join(results_dir(), 'stage_rosbag_play.log'))
         self.addCleanup(player.stop)
         player.start()
