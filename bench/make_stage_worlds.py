@@ -1,14 +1,17 @@
-"""Writes Stage worlds of N erratics (the lesson's robot and 1081-beam laser) on the office plan.
+"""Writes Stage worlds of N erratics (the lesson's robot and 1081-beam laser) on a floor plan.
 
-Run: `/usr/bin/python3 bench/make_stage_worlds.py [OUT_DIR] [N ...]` with the devel space
-sourced (or PYTHONPATH=src/stage/stage_lite/src); defaults: OUT_DIR build/stage_worlds,
-N = 20 50 100. Prints the paths written.
+Run: `/usr/bin/python3 bench/make_stage_worlds.py [--map PLAN] [OUT_DIR] [N ...]` with the
+devel space sourced (or PYTHONPATH=src/stage/stage_lite/src); defaults: the workspace's
+office plan, OUT_DIR build/stage_worlds, N = 4 20 50 100. Prints the paths written. PLAN is
+any floor plan of the lesson's size and place (stage_ros's willow-full.pgm, say, which is
+the lesson's original: it is not in this repository).
 
 The worlds copy the lesson's (src/stage_multi/world/willow-multi-erratic.world: resolution,
-interval_sim, the floor plan with its size and pose, the erratic and topurg definitions) and
-stand the robots on free floor at least 1.2 m from every wall and from each other, chosen
+interval_sim, the floor plan's size and pose, the erratic and topurg definitions) and stand
+the robots on free floor at least 1.2 m from every wall and from each other, chosen
 deterministically (a fixed-seed shuffle of the free places), each with a fixed-seed yaw. The
-floor plan is named by absolute path, so the worlds load from any folder.
+4-robot world keeps the lesson's own four robots instead. The floor plan is named by
+absolute path, so the worlds load from any folder.
 """
 
 import math
@@ -17,7 +20,9 @@ import sys
 
 import numpy as np
 from scipy.ndimage import distance_transform_edt
-from stage_lite.world import load_world
+import tempfile
+
+from stage_lite.model.world import load_world
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 WORLD_DIR = os.path.join(HERE, '..', 'src', 'stage_multi', 'world')
@@ -29,9 +34,16 @@ COLORS = ('blue', 'red', 'green', 'magenta', 'cyan', 'orange', 'purple', 'yellow
           'black')
 
 
-def free_places(count, seed=SEED):
-    """`count` (x, y, yaw) on the lesson's floor plan, >= CLEARANCE_M from walls and apart."""
-    w = load_world(LESSON)
+OFFICE = os.path.join(WORLD_DIR, 'office.pgm')
+
+
+def free_places(count, floor_plan=OFFICE, seed=SEED):
+    """`count` (x, y, yaw) on the floor plan, >= CLEARANCE_M from walls and apart."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, 'plan.world')
+        with open(path, 'w') as f:
+            f.write(world_text([], floor_plan))
+        w = load_world(path)
     occ, ox, oy, res = w.occupancy()
     k = max(1, int(round(CELL_M / res)))
     rows, cols = occ.shape[0] // k, occ.shape[1] // k
@@ -58,12 +70,16 @@ def free_places(count, seed=SEED):
     raise RuntimeError('only %d places with %.1f m clearance' % (len(chosen), CLEARANCE_M))
 
 
-def world_text(places):
+def world_text(places, floor_plan=OFFICE):
+    """The lesson's world on `floor_plan` with erratics at `places` (the lesson's own four
+    robots when places is None)."""
     with open(LESSON) as f:
         lesson = f.read()
-    head = lesson[:lesson.index('# throw in a robot')]
-    head = head.replace('bitmap "office.pgm"', 'bitmap "%s"'
-                        % os.path.abspath(os.path.join(WORLD_DIR, 'office.pgm')))
+    cut = lesson.index('# throw in a robot')
+    head = lesson[:cut].replace('bitmap "office.pgm"', 'bitmap "%s"'
+                                % os.path.abspath(floor_plan))
+    if places is None:
+        return head + lesson[cut:]
     lines = [head, '# %d erratics (bench/make_stage_worlds.py)\n' % len(places)]
     for i, (x, y, yaw) in enumerate(places):
         lines.append('erratic( pose [ %.2f %.2f 0 %.1f ] name "robot%d" color "%s")\n'
@@ -71,24 +87,29 @@ def world_text(places):
     return ''.join(lines)
 
 
-def write_worlds(out_dir, counts=(20, 50, 100)):
-    """Writes erratics_<N>.world for each N; returns {N: path}."""
+def write_worlds(out_dir, counts=(4, 20, 50, 100), floor_plan=OFFICE):
+    """Writes <plan>_<N>.world for each N; returns {N: path}."""
     os.makedirs(out_dir, exist_ok=True)
-    places = free_places(max(counts))
+    places = free_places(max(counts), floor_plan)
+    name = os.path.splitext(os.path.basename(floor_plan))[0]
     out = {}
     for n in counts:
-        path = os.path.join(out_dir, 'erratics_%d.world' % n)
+        path = os.path.join(out_dir, '%s_%d.world' % (name, n))
         with open(path, 'w') as f:
-            f.write(world_text(places[:n]))
+            f.write(world_text(None if n == 4 else places[:n], floor_plan))
         out[n] = path
     return out
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
+    argv = list(sys.argv[1:] if argv is None else argv)
+    floor_plan = OFFICE
+    if argv[:1] == ['--map']:
+        floor_plan = argv[1]
+        argv = argv[2:]
     out_dir = argv[0] if argv else os.path.join(HERE, '..', 'build', 'stage_worlds')
-    counts = tuple(int(a) for a in argv[1:]) or (20, 50, 100)
-    for n, path in write_worlds(out_dir, counts).items():
+    counts = tuple(int(a) for a in argv[1:]) or (4, 20, 50, 100)
+    for n, path in write_worlds(out_dir, counts, floor_plan).items():
         print('%3d erratics: %s' % (n, os.path.normpath(path)))
 
 

@@ -67,7 +67,8 @@ class RobotOutput:
                 robot.pose, robot.truth_twist)))
         for pub, template, ranger in zip(self.scan_pubs, self.templates, robot.rangers,
                                          strict=True):
-            if has_subscribers(pub):
+            # stageros publishes a ranger once it has ranges: after its first update
+            if ranger.has_data and has_subscribers(pub):
                 out.append((pub, template.frame(seq, secs, nsecs, ranger.ranges,
                                                 ranger.intensities)))
 

@@ -33,6 +33,7 @@ Parameters (private):
 Command line: -g no window (without -g a Tk window opens when there is a display, else a
 WARN and headless), -u model names as namespaces; the world file last.
 """
+import math
 import os
 import sys
 import threading
@@ -45,7 +46,7 @@ from course_common.rospy_internals import cheap_rosout
 from course_common.startup import init_node
 
 from .names import all_robot_names, shared_namespaces
-from .pacing import SimClock, Throttle, Watchdog, check_speedup
+from .pacing import FLAT_OUT, SimClock, Throttle, Watchdog
 from .rospy_clock import drop_own_clock_subscription, set_own_time
 from .stage_publish import StepOutput
 from .stage_services import StageServices
@@ -115,13 +116,12 @@ class StageNode:
 
 
 def world_speedup(world, params):
-    """~speedup, else the world's `speedup` (ValueError if that one is bad)."""
+    """~speedup, else the world's `speedup`: as Stage's window reads it, a value that is not
+    above 0 (`speedup 0` in Stage's own examples) means as fast as possible."""
     if params.speedup is not None:
         return params.speedup
-    try:
-        return check_speedup(world.speedup)
-    except ValueError as err:
-        raise ValueError('speedup %r: %s' % (world.speedup, err)) from None
+    speedup = world.speedup
+    return float(speedup) if math.isfinite(speedup) and speedup > 0 else FLAT_OUT
 
 
 def _fatal(text):
@@ -144,7 +144,7 @@ class WorldLoader(threading.Thread):
         self.error = None
 
     def run(self):
-        from .world import WorldError, load_world  # numpy and the model after the command line
+        from .model.world import WorldError, load_world  # numpy and the model after the command line
         try:
             self.world = load_world(self.path)
         except WorldError as err:
@@ -212,10 +212,7 @@ def main(argv=None):
         set_use_sim_time_when_the_master_is_up()
         loader.start()
     world = world_or_exit(loader)
-    try:
-        node = StageNode(world, args, params)
-    except ValueError as err:  # a bad speedup or interval_sim in the world file
-        _fatal('%s: %s' % (world.path, err))
+    node = StageNode(world, args, params)
     rospy.loginfo('stageros: %s', node.describe())
     node.loop.start()
     try:

@@ -1,0 +1,218 @@
+"""The grid's storage: static bodies put in once, moving bodies drawn and erased as they move.
+
+Space owns the arrays grid.py's kernels walk (see grid.py for what they mean) and keeps the
+region table large enough for every body, growing it when a robot drives out of it.
+"""
+import math
+
+import numpy as np
+
+from . import grid
+
+REGION = grid.REGION
+MARGIN_REGIONS = 4        # table margin around the bodies, regions (2.56 m at 2 cm cells)
+
+
+class DynamicBlock:
+    """A block of a moving model: its model, its height range in the world, its cell class."""
+
+    def __init__(self, model, block, zmin, zmax):
+        self.model = model
+        self.block = block
+        self.zmin = zmin
+        self.zmax = zmax
+
+
+def _capacity(block, ppm):
+    """The most cells one drawing of the block's outline can take, at any pose."""
+    pts = block.pts
+    d = np.roll(pts, -1, axis=0) - pts
+    return int(np.sum(np.ceil(np.hypot(d[:, 0], d[:, 1]) * ppm * math.sqrt(2.0)) + 2)) + 4
+
+
+def _pages(block, ppm):
+    """The most regions one drawing of the block can touch."""
+    pts = block.pts
+    c = pts.mean(axis=0)
+    diameter = 2.0 * float(np.max(np.hypot(pts[:, 0] - c[0], pts[:, 1] - c[1]))) * ppm + 2
+    return (int(math.ceil(diameter / REGION)) + 1) ** 2
+
+
+class Space:
+    """The grid: region table, static cells, moving bodies' cell lists, and the ray cast."""
+
+    def __init__(self, ppm, n_models, model_root, model_rr, model_obstacle):
+        self.ppm = ppm
+        self.model_root = np.asarray(model_root, np.int64)
+        self.model_rr = np.asarray(model_rr, np.float64)
+        self.model_obstacle = np.asarray(model_obstacle, np.bool_)
+        self.seq = n_models          # drawings after the load come after every load-time one
+        self.rx0 = self.ry0 = 0
+        self.nrx = self.nry = 0
+        self.reg_count = np.zeros(0, np.int64)
+        self.reg_static = np.zeros(0, np.int32)
+        self.reg_dyn = np.zeros(0, np.int32)
+        self.reg_dyncount = np.zeros(0, np.int64)
+
+    # ---- load --------------------------------------------------------------------------
+    def build(self, static_cells, ray_zs, dynamic_blocks, coll_ranges, extent):
+        """static_cells: (x, y, model, zmin, zmax) arrays of every static drawing, in load
+        order; ray_zs: the beam heights; dynamic_blocks: DynamicBlock list with .coll set to
+        an index into coll_ranges (zmin, zmax pairs); extent: cell box (x0, y0, x1, y1) that
+        the table must hold at first."""
+        sx, sy, smodel, szmin, szmax = static_cells
+        x0, y0, x1, y1 = extent
+        if sx.size:
+            x0, y0 = min(x0, int(sx.min())), min(y0, int(sy.min()))
+            x1, y1 = max(x1, int(sx.max())), max(y1, int(sy.max()))
+        self._resize(x0, y0, x1, y1)
+        # static pages: one per region holding static drawings
+        reg = self._regions(sx, sy)
+        regions, page_of = np.unique(reg, return_inverse=True)
+        self.reg_static[regions] = np.arange(regions.size, dtype=np.int32)
+        np.add.at(self.reg_count, reg, 2)          # drawn in both layers
+        cell = (sy & (REGION - 1)) * REGION + (sx & (REGION - 1))
+        key = page_of.astype(np.int64) * grid.REGION_CELLS + cell
+        npages = max(1, regions.size)
+        self.st_ray = np.full((max(1, len(ray_zs)), npages, grid.REGION_CELLS), -1, np.int16
+                              if len(self.model_rr) < 32000 else np.int32)
+        flat_ray = self.st_ray.reshape(self.st_ray.shape[0], -1)
+        visible = self.model_rr[smodel] >= 0.0 if smodel.size else np.zeros(0, bool)
+        for k, z in enumerate(ray_zs):
+            hit = visible & (z >= szmin) & (z <= szmax)
+            keys, models = key[hit], smodel[hit]
+            # the first drawing in each cell (lowest model index: load order) is the one seen
+            order = np.lexsort((models, keys))
+            keys, models = keys[order], models[order]
+            first = np.ones(keys.size, bool)
+            first[1:] = keys[1:] != keys[:-1]
+            flat_ray[k, keys[first]] = models[first]
+        if len(coll_ranges) > 32:
+            raise ValueError('more than 32 height ranges of moving bodies')
+        self.st_coll = np.zeros((npages, grid.REGION_CELLS), np.uint32)
+        flat_coll = self.st_coll.ravel()
+        solid = self.model_obstacle[smodel] if smodel.size else np.zeros(0, bool)
+        for k, (zmin, zmax) in enumerate(coll_ranges):
+            hit = solid & (szmin <= zmax) & (szmax >= zmin)
+            np.bitwise_or.at(flat_coll, key[hit], np.uint32(1 << k))
+        self._build_dynamic(dynamic_blocks)
+
+    def _build_dynamic(self, blocks):
+        n = len(blocks)
+        caps = [_capacity(b.block, self.ppm) for b in blocks]
+        self.blk_model = np.array([b.model.index for b in blocks], np.int64)
+        self.blk_zmin = np.array([b.zmin for b in blocks], np.float64)
+        self.blk_zmax = np.array([b.zmax for b in blocks], np.float64)
+        self.blk_class = np.array([b.coll for b in blocks], np.int64)
+        self.rc_start = np.concatenate(([0], np.cumsum(caps)[:-1])).astype(np.int64) \
+            if n else np.zeros(0, np.int64)
+        total = int(sum(caps)) + 1
+        self.rc_len = np.zeros((2, max(n, 1)), np.int64)
+        self.rc_x = np.zeros((2, total), np.int64)
+        self.rc_y = np.zeros((2, total), np.int64)
+        entries = 2 * total
+        self.ent_block = np.zeros(entries, np.int64)
+        self.ent_seq = np.zeros(entries, np.int64)
+        self.ent_next = np.arange(1, entries + 1, dtype=np.int64)
+        self.ent_next[-1] = -1
+        self.ent_free = np.zeros(1, np.int64)
+        pages = max(1, 2 * sum(_pages(b.block, self.ppm) for b in blocks))
+        self.dyn_head = np.full((pages, 2, grid.REGION_CELLS), -1, np.int32)
+        self.page_free = np.arange(pages, dtype=np.int64)[::-1].copy()
+        self.free_state = np.array([pages], np.int64)
+
+    # ---- the region table ----------------------------------------------------------------
+    def _regions(self, x, y):
+        return ((y >> grid.RBITS) - self.ry0) * self.nrx + ((x >> grid.RBITS) - self.rx0)
+
+    def _resize(self, x0, y0, x1, y1):
+        """Makes the table hold cells x0..x1, y0..y1 (plus a margin), keeping its content."""
+        rx0 = (x0 >> grid.RBITS) - MARGIN_REGIONS
+        ry0 = (y0 >> grid.RBITS) - MARGIN_REGIONS
+        rx1 = (x1 >> grid.RBITS) + MARGIN_REGIONS
+        ry1 = (y1 >> grid.RBITS) + MARGIN_REGIONS
+        if self.nrx:
+            rx0, ry0 = min(rx0, self.rx0), min(ry0, self.ry0)
+            rx1, ry1 = max(rx1, self.rx0 + self.nrx - 1), max(ry1, self.ry0 + self.nry - 1)
+        nrx, nry = rx1 - rx0 + 1, ry1 - ry0 + 1
+        new = {}
+        for name, fill, dtype in (('reg_count', 0, np.int64), ('reg_static', -1, np.int32),
+                                  ('reg_dyn', -1, np.int32), ('reg_dyncount', 0, np.int64)):
+            table = np.full((nry, nrx), fill, dtype)
+            if self.nrx:
+                oy, ox = self.ry0 - ry0, self.rx0 - rx0
+                table[oy:oy + self.nry, ox:ox + self.nrx] = getattr(self, name).reshape(
+                    self.nry, self.nrx)
+            new[name] = table.ravel()
+        self.rx0, self.ry0, self.nrx, self.nry = rx0, ry0, nrx, nry
+        for name, table in new.items():
+            setattr(self, name, table)
+
+    def hold(self, xs, ys):
+        """Grows the table if cells xs, ys (int arrays) fall outside it."""
+        x0, x1 = int(xs.min()), int(xs.max())
+        y0, y1 = int(ys.min()), int(ys.max())
+        if ((x0 >> grid.RBITS) < self.rx0 or (y0 >> grid.RBITS) < self.ry0
+                or (x1 >> grid.RBITS) >= self.rx0 + self.nrx
+                or (y1 >> grid.RBITS) >= self.ry0 + self.nry):
+            self._resize(x0, y0, x1, y1)
+
+    # ---- moving bodies ---------------------------------------------------------------------
+    def draw(self, blocks, vertices, layer, seq=None):
+        """Erases blocks (indices) from `layer` and draws them at `vertices` (one (vx, vy)
+        pair of int arrays per block): Stage's UnMap then Map. All blocks of one model share
+        one drawing sequence number, given or the next one."""
+        if seq is None:
+            seq = self.next_seq()
+        for b, (vx, vy) in zip(blocks, vertices):
+            self.hold(vx, vy)
+            grid.unmap_block(b, layer, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
+                             self.rx0, self.ry0, self.nrx, self.nry, self.reg_count,
+                             self.reg_dyn, self.reg_dyncount, self.dyn_head, self.ent_block,
+                             self.ent_next, self.free_state, self.ent_free, self.page_free)
+            grid.map_block(b, layer, vx, vy, seq, self.rc_start, self.rc_len, self.rc_x,
+                           self.rc_y, self.rx0, self.ry0, self.nrx, self.nry, self.reg_count,
+                           self.reg_dyn, self.reg_dyncount, self.dyn_head, self.ent_block,
+                           self.ent_next, self.ent_seq, self.free_state, self.ent_free,
+                           self.page_free)
+
+    def next_seq(self):
+        self.seq += 1
+        return self.seq
+
+    def collides(self, blocks, layer):
+        """Block::TestCollision of these blocks as drawn in `layer`: grid.NO_HIT, STATIC,
+        GROUND or the moving model hit."""
+        return grid.collides(blocks, layer, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
+                             self.rx0, self.ry0, self.nrx, self.nry, self.reg_static,
+                             self.reg_dyn, self.st_coll, self.blk_class, self.dyn_head,
+                             self.ent_block, self.ent_next, self.blk_model, self.blk_zmin,
+                             self.blk_zmax, self.model_root, self.model_obstacle)
+
+    # ---- rays ------------------------------------------------------------------------------
+    def cast(self, x, y, z, a, rng, ray_class, root, layer):
+        """Every ray (arrays): (range m float64, model hit int64 or -1)."""
+        out_range = np.empty(x.shape[0], np.float64)
+        out_model = np.empty(x.shape[0], np.int64)
+        grid.cast_all(x, y, z, a, rng, ray_class, root, layer, self.ppm, self.rx0, self.ry0,
+                      self.nrx, self.nry, self.reg_count, self.reg_static, self.reg_dyn,
+                      self.st_ray, self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
+                      self.blk_model, self.blk_zmin, self.blk_zmax, self.model_root,
+                      self.model_rr, out_range, out_model)
+        return out_range, out_model
+
+    def static_cells(self):
+        """(x, y) int arrays of every cell holding a static body (for pictures and maps)."""
+        pages = np.flatnonzero(self.reg_static.reshape(-1) >= 0)
+        xs, ys = [], []
+        for reg in pages:
+            page = self.reg_static[reg]
+            used = np.flatnonzero((self.st_coll[page] != 0)
+                                  | (self.st_ray[:, page, :] >= 0).any(axis=0))
+            rx = reg % self.nrx + self.rx0
+            ry = reg // self.nrx + self.ry0
+            xs.append(rx * REGION + used % REGION)
+            ys.append(ry * REGION + used // REGION)
+        if not xs:
+            return np.zeros(0, np.int64), np.zeros(0, np.int64)
+        return np.concatenate(xs), np.concatenate(ys)

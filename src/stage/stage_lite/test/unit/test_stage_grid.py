@@ -1,0 +1,109 @@
+"""Stage's grid and ray walk (stage_lite.model.grid, through small worlds): outlines drawn as
+4-connected lines, the quirks Stage's rays have, and what a beam sees."""
+import math
+
+import numpy as np
+import pytest
+from stage_lite.model import grid
+from stage_lite.model.world import load_world
+
+ONE_BEAM = 'define beam ranger ( sensor( range [ 0 5 ] samples 1 ) )\n'
+
+
+def cells(vx, vy):
+    vx, vy = np.array(vx, np.int64), np.array(vy, np.int64)
+    n = grid.poly_cell_count(vx, vy)
+    xs, ys = np.empty(n, np.int64), np.empty(n, np.int64)
+    assert grid.poly_cells(vx, vy, xs, ys, 0) == n
+    return list(zip(xs.tolist(), ys.tolist(), strict=True))
+
+
+def test_outline_cells_leave_out_each_edge_last_cell():
+    assert cells([0, 3, 3, 0], [0, 0, 2, 2]) == [
+        (0, 0), (1, 0), (2, 0), (3, 0), (3, 1), (3, 2), (2, 2), (1, 2), (0, 2), (0, 1)]
+
+
+def test_a_slanted_edge_is_a_4_connected_line():
+    # Cohen's walk from (0, 0) to (2, 1): x, then y, then x; (2, 1) belongs to the next edge
+    assert cells([0, 2], [0, 1])[:3] == [(0, 0), (1, 0), (1, 1)]
+
+
+@pytest.mark.parametrize('a, b, expected', [(7, 32, 0), (-7, 32, 0), (-40, 32, -1),
+                                            (40, 32, 1)])
+def test_c_division_truncates(a, b, expected):
+    assert grid.c_div(a, b) == expected
+
+
+def world(tmp_path, body, robot):
+    p = tmp_path / 'w.world'
+    p.write_text('resolution 0.02\n' + ONE_BEAM + body + '\nposition( size [ 0.2 0.2 0.2 ] '
+                 + robot + ' beam( ) )\n')
+    w = load_world(str(p))
+    w.step()
+    return w.robots[0].rangers[0]
+
+
+def test_rays_look_cells_up_by_truncation_toward_zero(tmp_path):
+    # STAGE_TRUNCATED_LOOKUP. A wall's near edge is drawn in cell column 100 (x = 2.0 to
+    # 2.02); a beam going north at x = 2.005 lies in that column and meets the wall's bottom
+    # edge at y = 1.0. Mirrored to x < 0 the wall's near edge is column -100 (floor(-100.0))
+    # and the beam at x = -2.005 lies in it, but Stage reads column trunc(-100.25) = -100...
+    # so it hits too; at x = -1.995 (column -100 by floor) Stage reads -99 and misses.
+    east = world(tmp_path, 'model( pose [ 2.5 1.25 0 0 ] size [ 1.0 0.5 1 ] )',
+                 'pose [ 2.005 0.01 0 90 ]')
+    assert east.ranges[0] == pytest.approx(1.0, abs=1e-12)
+    west_inside = world(tmp_path, 'model( pose [ -2.5 1.25 0 0 ] size [ 1.0 0.5 1 ] )',
+                        'pose [ -2.005 0.01 0 90 ]')
+    assert west_inside.ranges[0] == pytest.approx(1.0, abs=1e-12)
+    west_edge = world(tmp_path, 'model( pose [ -2.5 1.25 0 0 ] size [ 1.0 0.5 1 ] )',
+                      'pose [ -1.995 0.01 0 90 ]')
+    assert west_edge.ranges[0] == 5.0 and west_edge.intensities[0] == 0.0
+
+
+def test_range_is_the_walk_position_not_the_exact_distance(tmp_path):
+    # STAGE_WALK_RANGE: the beam starts in the middle of its cell (x = 0.01: 0.5 cell) and is
+    # stopped in the middle of the wall's first cell: 0.5 m to a wall at x = 0.5, not 0.49 m
+    near = world(tmp_path, 'model( pose [ 0.75 0 0 0 ] size [ 0.5 2 1 ] )',
+                 'pose [ 0.01 0.01 0 0 ]')
+    assert near.ranges[0] == 0.5 and near.intensities[0] == 1.0
+
+
+def test_beams_jump_empty_regions_from_border_to_border(tmp_path):
+    # STAGE_EMPTY_REGION_JUMP: regions of 32 x 32 cells; past the robot's own region the
+    # beam jumps through empty ones to their borders (x = 64, 96 cells) and walks on from
+    # there: it meets the wall's cell 100 at x = 100 cells, 99.5 cells from its start
+    far = world(tmp_path, 'model( pose [ 2.25 0 0 0 ] size [ 0.5 2 1 ] )',
+                'pose [ 0.01 0.01 0 0 ]')
+    assert far.ranges[0] == np.float32(1.99)
+
+
+@pytest.mark.parametrize('props, seen, intensity', [
+    ('ranger_return 0', True, 0.0), ('ranger_return -1', False, 0.0),
+    ('ranger_return 0.5', True, 0.5), ('obstacle_return 0', True, 1.0)])
+def test_ranger_return(tmp_path, props, seen, intensity):
+    g = world(tmp_path, 'model( pose [ 2.25 0 0 0 ] size [ 0.5 2 1 ] %s )' % props,
+              'pose [ 0.01 0.01 0 0 ]')
+    assert (g.ranges[0] < 5.0) == seen and g.intensities[0] == intensity
+
+
+@pytest.mark.parametrize('wall_z, seen', [('0.2', False), ('0.22', True), ('1', True)])
+def test_beams_meet_bodies_whose_height_holds_them(tmp_path, wall_z, seen):
+    # the beam leaves at the body's height (0.2) plus half the transducer's (0.01):
+    # 0.21000000000000002 in doubles, above a 0.21 m wall
+    g = world(tmp_path, 'model( pose [ 2.25 0 0 0 ] size [ 0.5 2 %s ] )' % wall_z,
+              'pose [ 0.01 0.01 0 0 ]')
+    assert (g.ranges[0] < 5.0) == seen
+
+
+def test_ray_angles_are_rounded_to_floats_one_after_the_other():
+    out = np.zeros(3)
+    grid.sample_angles(0.1, 0.25, 3, out, 0)
+    a0 = float(np.float32(0.1))
+    a1 = float(np.float32(a0 + 0.25))
+    assert out.tolist() == [a0, a1, float(np.float32(a1 + 0.25))]
+    assert out[0] != 0.1
+
+
+def test_a_beam_through_empty_space_reads_its_range(tmp_path):
+    g = world(tmp_path, 'model( pose [ 40 40 0 0 ] size [ 1 1 1 ] )', 'pose [ 0 0 0 33 ]')
+    assert g.ranges[0] == 5.0 and not math.isnan(g.ranges[0])
