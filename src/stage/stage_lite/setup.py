@@ -2,4 +2,5 @@
 from catkin_pkg.python_setup import generate_distutils_setup
 from setuptools import setup
 
-setup(**generate_distutils_setup(packages=['stage_lite'], package_dir={'': 'src'}))
+setup(**generate_distutils_setup(
+    packages=['stage_lite', 'stage_lite.model', 'stage_lite.testing'], package_dir={'': 'src'}))

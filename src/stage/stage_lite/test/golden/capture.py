@@ -491,6 +491,8 @@ def parse_args(argv=None):
     args = parser.parse_args(argv)
     if not os.path.isfile(args.world):
         parser.error('no world file %s' % args.world)  # real stageros would segfault
+    if not os.path.isdir(os.path.dirname(os.path.abspath(args.out))):
+        parser.error('no folder for %s' % args.out)
     return args
 
 

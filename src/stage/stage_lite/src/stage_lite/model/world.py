@@ -438,6 +438,27 @@ class World:
             v.intensities[:] = np.where(models >= 0, rr[np.maximum(models, 0)], 0.0)
             v.has_data = True
 
+    def scan_from(self, view, pose):
+        """The ranges (float32) `view` reads with its robot at `pose` (x, y, z, a), through
+        the layer the last step's rays read. In Stage the rangers run in a worker thread
+        beside the moves: now and then one starts before its robot has moved, and its scan
+        is this one with the robot's pose before the step."""
+        robot = view.model.parent
+        keep = robot.pose
+        robot.pose = pose
+        try:
+            x, y, z, a = view.model.ray_origin(view.sensor)
+        finally:
+            robot.pose = keep
+        n = view.samples
+        angles = np.empty(n)
+        grid.sample_angles(a, Ranger.sample_increment(view.sensor), n, angles, 0)
+        rng, _ = self.space.cast(np.full(n, x), np.full(n, y), np.full(n, z), angles,
+                                 np.full(n, view.range_max),
+                                 np.full(n, self._ray_zs.index(view.beam_z), np.int64),
+                                 np.full(n, view.model.root.index, np.int64), self.updates % 2)
+        return rng.astype(np.float32)
+
     def _noisy(self, ranges, v):
         """Stage's range noise: + range * proportional * U[-1, 1) + N(0, constant variance),
         on beams that hit (Stage's own random numbers cannot be reproduced)."""
