@@ -17,11 +17,10 @@ absolute path, so the worlds load from any folder.
 import math
 import os
 import sys
+import tempfile
 
 import numpy as np
 from scipy.ndimage import distance_transform_edt
-import tempfile
-
 from stage_lite.model.world import load_world
 
 HERE = os.path.dirname(os.path.abspath(__file__))

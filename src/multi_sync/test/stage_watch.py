@@ -32,6 +32,9 @@ FRONT, BACK = (0, 2), (1, 3)
 AHEAD_OF = {1: 0, 3: 2}  # a back robot -> the teammate in front of it, in its lane
 WALL_FACE_X = -9.6  # the hall's east wall, ahead of every robot
 LASER_AHEAD_M = 0.05  # the erratic's laser, ahead of its pose
+# Stage's laser reads this wall 3 cm short of the geometry (its ray walk: cells looked up by
+# truncation at negative coordinates, ranges to the walk's cell; stage_lite's golden data)
+STAGE_READS_SHORT_M = 0.03
 BODY_FRONT_M, BODY_BACK_M = 0.125, 0.225  # the erratic's footprint about its pose (origin -0.05)
 POSE_TOL_M = 1e-6  # poses come from the same doubles: only float noise
 MOVED_M = 0.1  # five steps at 0.2 m/s: the robot is driving, not jittering
@@ -100,8 +103,9 @@ def body_gap_m(front_x, back_x):
 
 
 def laser_to_wall_m(x):
-    """What the laser of a front robot at x sees of the wall straight ahead (m)."""
-    return WALL_FACE_X - (x + LASER_AHEAD_M)
+    """What the laser of a front robot at x reads of the wall straight ahead (m): the
+    distance from the laser to the wall face, as Stage's walk reads it."""
+    return WALL_FACE_X - (x + LASER_AHEAD_M) - STAGE_READS_SHORT_M
 
 
 def on_sim_time(lines):

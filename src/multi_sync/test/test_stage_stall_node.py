@@ -2,10 +2,11 @@
 """rostest node: with the bumper and the gap off, the robots behave as the lesson's on Stage.
 
 multi_sync.launch stop_distance_m:=0 min_gap_m:=0: after GO every robot drives straight on
-at 0.2 m/s until Stage stalls it, the front pair at the wall after 1.76 m, the back pair
-against the front pair's backs after 3.38 m (real Stage, on the lesson's own map: 1.78 m and
-3.40 m). Stalled: the ground truth stands still while odom's twist still reads the commanded
-0.2 and the robot still commands 0.2.
+at 0.2 m/s until Stage stalls it, the front pair at the wall after 1.74 m, the back pair
+against the front pair's backs after 3.36 m (as real Stage 4.3.0 does on this world:
+stage_multi's golden capture; on the lesson's own map real Stage gives 1.78 m and 3.40 m).
+Stalled: the ground truth stands still while odom's twist still reads the commanded 0.2 and
+the robot still commands 0.2.
 """
 import sys
 
@@ -27,7 +28,7 @@ DRIVE_S = 120.0  # 17 s of sim time at real time to the back pair's stall, on a 
 SPEED_MPS = 0.2  # the lesson's; exact as a double on the wire
 # Where Stage stalls them on the workspace's floor plan (stage_multi's test_lesson_world.py
 # has the same from the model): deterministic, poses advance in whole 2 cm steps.
-STALL_TRAVEL_M = {0: 1.76, 1: 3.38, 2: 1.76, 3: 3.38}
+STALL_TRAVEL_M = {0: 1.74, 1: 3.36, 2: 1.74, 3: 3.36}
 STALL_TOL_M = 0.021  # one 2 cm step, plus float noise
 # Stalled against a back: Stage refuses a step that brings two bodies within one 2 cm cell,
 # so they stop 3 cm apart (as on real Stage); less than two steps is "against it".

@@ -32,9 +32,9 @@ ROBOTS = range(len(STARTS))
 FRONT, BACK = (0, 2), (1, 3)
 SPEED_MPS = 0.2  # the lesson's linear.x; exact as a double on the wire
 RATE_HZ = 10.0
-# Where Stage stalls them on the workspace's floor plan (stage_multi's test_lesson_world.py
-# gives the same from the model); the real Stage on the lesson's own map: 1.78 and 3.40.
-STALL_TRAVEL_M = {0: 1.76, 1: 3.38, 2: 1.76, 3: 3.38}
+# Where real Stage 4.3.0 stalls them on the workspace's floor plan (the golden capture
+# test_lesson_world.py replays); on the lesson's own map real Stage gives 1.78 and 3.40.
+STALL_TRAVEL_M = {0: 1.74, 1: 3.36, 2: 1.74, 3: 3.36}
 STEP_M = 0.02  # 0.2 m/s for one 100 ms step: poses advance in whole steps
 STALL_TOL_M = STEP_M / 4  # the stall is at a whole step
 POSE_TOL_M = 1e-6  # y and heading: only float noise

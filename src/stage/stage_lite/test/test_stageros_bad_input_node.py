@@ -31,9 +31,9 @@ class StagerosBadInputTest(StageTestCase):
         self._fails(['-g', world('node_bad_bitmap.world')], 'node_bad_bitmap.world',
                     'node_missing_map.pgm')
 
-    def test_bad_speedup_in_the_world_names_the_file(self):
-        self._fails(['-g', world('node_bad_speedup.world')], 'node_bad_speedup.world:2:',
-                    'speedup')
+    def test_short_tuple_names_file_and_line(self):
+        self._fails(['-g', world('node_bad_tuple.world')], 'node_bad_tuple.world:3:',
+                    'pose needs 4 values, got 3')
 
     def test_no_world_file_prints_the_usage(self):
         self._fails(['-g'], 'Usage: stageros [-g] [-u] WORLD')

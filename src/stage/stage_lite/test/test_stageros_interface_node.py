@@ -145,17 +145,23 @@ class StagerosInterfaceTest(StageTestCase):
         pub = rospy.Publisher('/robot_3/cmd_vel', Twist, queue_size=10)
         wait_connected(pub, 'robot_3/cmd_vel')
         rec = Recorder('/robot_3/base_pose_ground_truth', Odometry, keep=1)
+        odom = Recorder('/robot_3/odom', Odometry, keep=1)
         rec.wait_first()
 
         def moved():
             pub.publish(Twist(angular=Vector3(0, 0, 0.5)))
             return abs(rec.latest().pose.pose.orientation.z) > 0.05
         wait_for(moved, EVENT_DEADLINE_S, 'robot_3 to turn')
+        # As in Stage, reset_positions moves the robots back and leaves their velocity: wait
+        # for the watchdog to stop robot_3 first, so that it stays where it is put.
+        wait_for(lambda: odom.latest().twist.twist.angular.z == 0, EVENT_DEADLINE_S,
+                 'the watchdog to stop robot_3')
         self._reset()
         wait_for(lambda: abs(rec.latest().pose.pose.orientation.z) < POSE_TOL_M
                  and math.dist(_xy(rec.latest()), STARTS[3]) < POSE_TOL_M, EVENT_DEADLINE_S,
                  'robot_3 back at its start pose')
         rec.close()
+        odom.close()
 
     def test_bad_commands_are_refused_with_a_warning(self):
         logs = Recorder('/rosout', Log)

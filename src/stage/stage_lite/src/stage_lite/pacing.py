@@ -27,6 +27,12 @@ def check_speedup(value):
     return float(value)
 
 
+def world_speedup(value):
+    """The real-time factor a world's `speedup` asks for, as Stage's window reads it: a value
+    above 0 (finite), else as fast as possible (Stage's own examples write `speedup 0`)."""
+    return float(value) if math.isfinite(value) and value > 0 else FLAT_OUT
+
+
 class SimClock:
     """Simulated time after ``steps`` steps of interval_s each."""
 

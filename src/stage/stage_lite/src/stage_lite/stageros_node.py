@@ -33,7 +33,6 @@ Parameters (private):
 Command line: -g no window (without -g a Tk window opens when there is a display, else a
 WARN and headless), -u model names as namespaces; the world file last.
 """
-import math
 import os
 import sys
 import threading
@@ -46,7 +45,7 @@ from course_common.rospy_internals import cheap_rosout
 from course_common.startup import init_node
 
 from .names import all_robot_names, shared_namespaces
-from .pacing import FLAT_OUT, SimClock, Throttle, Watchdog
+from .pacing import SimClock, Throttle, Watchdog, world_speedup
 from .rospy_clock import drop_own_clock_subscription, set_own_time
 from .stage_publish import StepOutput
 from .stage_services import StageServices
@@ -76,7 +75,7 @@ class StageNode:
             rospy.logwarn(line)
         self.output = StepOutput(world, self.names, params, self.on_cmd_vel)
         self.services = StageServices(self)
-        self.loop = StepLoop(self, world_speedup(world, params))
+        self.loop = StepLoop(self, node_speedup(world, params))
 
     def on_cmd_vel(self, msg, index):
         vx, vy, wz = msg.linear.x, msg.linear.y, msg.angular.z
@@ -115,13 +114,9 @@ class StageNode:
                    if self.params.base_watchdog_timeout_s > 0 else 'off'))
 
 
-def world_speedup(world, params):
-    """~speedup, else the world's `speedup`: as Stage's window reads it, a value that is not
-    above 0 (`speedup 0` in Stage's own examples) means as fast as possible."""
-    if params.speedup is not None:
-        return params.speedup
-    speedup = world.speedup
-    return float(speedup) if math.isfinite(speedup) and speedup > 0 else FLAT_OUT
+def node_speedup(world, params):
+    """~speedup, else the world's `speedup` (pacing.world_speedup)."""
+    return params.speedup if params.speedup is not None else world_speedup(world.speedup)
 
 
 def _fatal(text):
@@ -144,7 +139,10 @@ class WorldLoader(threading.Thread):
         self.error = None
 
     def run(self):
-        from .model.world import WorldError, load_world  # numpy and the model after the command line
+        from .model.world import (  # numpy and the model after the command line
+            WorldError,
+            load_world,
+        )
         try:
             self.world = load_world(self.path)
         except WorldError as err:

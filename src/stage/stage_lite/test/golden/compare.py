@@ -5,10 +5,13 @@
 
 Prints, on the steps both captures hold: per robot and laser, the share of beams whose
 ranges are float32-equal and within 5 cm, the share of equal intensities, the worst beams
-(beam index, step, real, ours); per robot, the largest odom and ground-truth pose
-differences (mm, mrad) and odom twist difference; and each capture's stall steps (a step
-whose odom twist, the velocity Stage applied, is non-zero while the ground-truth pose did
-not change from the step before) with the steps only one of them stalls at.
+(beam index, step, real, ours), and each capture's stale scans (a scan identical to the step
+before's while the robot moved: real Stage's ranger now and then skips an update, at steps
+that change from run to run, and catches up at the next); per robot, the largest odom and
+ground-truth pose differences (mm, mrad) and odom twist difference; and each capture's
+stall steps (a step whose odom twist, the velocity Stage applied, is non-zero while the
+ground-truth pose did not change from the step before) with the steps only one of them
+stalls at.
 Needs numpy only.
 """
 import argparse
@@ -54,13 +57,13 @@ def scan_rows(a, b, ia, ib, worst):
     lasers_b = keys_of(b, r'r(\d+)_(scan\d+)_ranges')
     for robot, scan in sorted(lasers_a.keys() | lasers_b.keys()):
         if (robot, scan) not in lasers_a or (robot, scan) not in lasers_b:
-            rows.append('| r%d | %s | only in %s ||||||' % (
+            rows.append('| r%d | %s | only in %s |||||||' % (
                 robot, scan, 'real' if (robot, scan) in lasers_a else 'ours'))
             continue
         prefix = 'r%d_%s_' % (robot, scan)
         ra, rb = a[prefix + 'ranges'][ia], b[prefix + 'ranges'][ib]
         if ra.shape != rb.shape:
-            rows.append('| r%d | %s | beams %d vs %d ||||||' % (robot, scan, ra.shape[1],
+            rows.append('| r%d | %s | beams %d vs %d |||||||' % (robot, scan, ra.shape[1],
                                                                  rb.shape[1]))
             continue
         rows_a, rows_b = ~np.isnan(ra).all(axis=1), ~np.isnan(rb).all(axis=1)  # published
@@ -81,10 +84,21 @@ def scan_rows(a, b, ia, ib, worst):
             step = int(np.argmax(np.where(np.isnan(diff[:, beam]), np.inf, diff[:, beam])))
             listed.append('#%d s%d %.4f/%.4f' % (beam, a['steps'][ia][both][step],
                                                    ra[step, beam], rb[step, beam]))
-        rows.append('| r%d | %s | %d | %d%s | %s | %s | %s | %s | %s |' % (
+        stale = ['%d (%s)' % (len(st), spans(st)) if st else '0'
+                 for st in (stale_steps(a, robot, scan, ia), stale_steps(b, robot, scan, ib))]
+        rows.append('| r%d | %s | %d | %d%s | %s | %s | %s | %s | %s | %s |' % (
             robot, scan, ra.shape[1], len(ra), late, percent(equal), percent(diff <= NEAR_M),
-            percent(intensities), geom, '; '.join(listed) or '-'))
+            percent(intensities), geom, ' / '.join(stale), '; '.join(listed) or '-'))
     return rows
+
+
+def stale_steps(arrays, robot, scan, rows):
+    """The steps (among rows of arrays['steps']) whose scan repeats the step before's while
+    the robot's ground-truth pose changed."""
+    ranges = arrays['r%d_%s_ranges' % (robot, scan)][rows]
+    pose = arrays['r%d_gt_pose' % robot][rows]
+    stale = np.all(ranges[1:] == ranges[:-1], axis=1) & np.any(pose[1:] != pose[:-1], axis=1)
+    return set(arrays['steps'][rows][1:][stale].tolist())
 
 
 def stall_steps(arrays, robot):
@@ -147,8 +161,9 @@ def compare(path_a, path_b, worst=WORST):
     if not len(common):
         return lines
     lines += ['', '| robot | laser | beams | steps | float32-equal | within 5 cm '
-              '| intensities equal | geometry | worst beams (#beam step real/ours, m) |',
-              '|---|---|---:|---|---:|---:|---:|---|---|']
+              '| intensities equal | geometry | stale scans real / ours '
+              '| worst beams (#beam step real/ours, m) |',
+              '|---|---|---:|---|---:|---:|---:|---|---|---|']
     lines += scan_rows(a, b, ia, ib, worst)
     lines += ['', '| robot | odom max mm | odom yaw max mrad | gt max mm | gt yaw max mrad '
               '| odom twist max diff | stalls real | stalls ours | only real | only ours |',

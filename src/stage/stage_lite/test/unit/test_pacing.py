@@ -10,6 +10,7 @@ from stage_lite.pacing import (
     Throttle,
     Watchdog,
     check_speedup,
+    world_speedup,
 )
 
 TOL = 1e-9  # s: schedules are sums of a few floats
@@ -86,3 +87,10 @@ def test_throttle_lets_one_through_per_period():
     throttle = Throttle(1.0)
     assert [throttle.ready(t) for t in (0.0, 0.5, 0.99, 1.0, 1.5, 2.5)] == \
         [True, False, False, True, False, True]
+
+
+@pytest.mark.parametrize('value, expected', [
+    (1.0, 1.0), (2.5, 2.5), (0.0, FLAT_OUT), (-1.0, FLAT_OUT), (-3.0, FLAT_OUT),
+    (math.nan, FLAT_OUT), (math.inf, FLAT_OUT)])
+def test_a_worlds_speedup_as_stages_window_reads_it(value, expected):
+    assert world_speedup(value) == expected

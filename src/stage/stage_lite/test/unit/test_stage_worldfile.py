@@ -4,7 +4,15 @@ import math
 
 import pytest
 from stage_lite.model.worldfile import (
-    NUM, STRING, WORD, Worldfile, WorldError, c_atof, c_atoi, tokenize)
+    NUM,
+    STRING,
+    WORD,
+    WorldError,
+    Worldfile,
+    c_atof,
+    c_atoi,
+    tokenize,
+)
 
 DEG = math.pi / 180.0
 

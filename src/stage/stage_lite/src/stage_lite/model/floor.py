@@ -51,13 +51,13 @@ def _fill_bitmap(occ, m, x0, y0, ppm):
     kx = sx / m.geom_size[0] if m.geom_size[0] else 0.0
     ky = sy / m.geom_size[1] if m.geom_size[1] else 0.0
     cos, sin = math.cos(ba), math.sin(ba)
-    X = (x0 + np.arange(c0, c1) + 0.5) / ppm - bx
+    cell_x = (x0 + np.arange(c0, c1) + 0.5) / ppm - bx
     h, w = img.shape
     for a in range(r0, r1, ROW_CHUNK):
         b = min(r1, a + ROW_CHUNK)
-        Y = ((y0 + np.arange(a, b) + 0.5) / ppm - by)[:, None]
-        xl = X[None, :] * cos + Y * sin
-        yl = -X[None, :] * sin + Y * cos
+        cell_y = ((y0 + np.arange(a, b) + 0.5) / ppm - by)[:, None]
+        xl = cell_x[None, :] * cos + cell_y * sin
+        yl = -cell_x[None, :] * sin + cell_y * cos
         col = np.floor(xl * kx + (minx + sx / 2.0)).astype(np.int64)
         row = np.floor(-(yl * ky + (miny + sy / 2.0))).astype(np.int64)
         inside = (col >= 0) & (col < w) & (row >= 0) & (row < h)

@@ -164,7 +164,7 @@ class Space:
         one drawing sequence number, given or the next one."""
         if seq is None:
             seq = self.next_seq()
-        for b, (vx, vy) in zip(blocks, vertices):
+        for b, (vx, vy) in zip(blocks, vertices, strict=True):
             self.hold(vx, vy)
             grid.unmap_block(b, layer, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
                              self.rx0, self.ry0, self.nrx, self.nry, self.reg_count,

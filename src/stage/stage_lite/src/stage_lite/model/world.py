@@ -27,7 +27,7 @@ from . import floor, grid
 from .models import BUILTIN_TYPES, SIMULATED_TYPES, Position, Ranger, calc_size, new_model
 from .pose import pose_add, stage_normalize
 from .space import DynamicBlock, Space
-from .worldfile import Worldfile, WorldError
+from .worldfile import WorldError, Worldfile
 
 __all__ = ['World', 'Robot', 'WorldError', 'load_world']
 
@@ -259,7 +259,8 @@ class World:
                 statics[3].append(np.full(n, zmin))
                 statics[4].append(np.full(n, zmax))
         cells = tuple(np.concatenate(a) if a else np.zeros(0, t)
-                      for a, t in zip(statics, (np.int64, np.int64, np.int64, float, float)))
+                      for a, t in zip(statics, (np.int64, np.int64, np.int64, float, float),
+                                    strict=True))
         self._ray_zs = sorted({v.beam_z for r in self.robots for v in r.rangers})
         extent = self._extent(dynamic)
         self.space.build(cells, self._ray_zs, dynamic, coll, extent)
@@ -402,7 +403,7 @@ class World:
     # ---- rays --------------------------------------------------------------------------
     def _cast_rays(self, now, layer):
         due = []
-        for k, (r, v) in enumerate(self._views):
+        for k, (_, v) in enumerate(self._views):
             if v.next_update_us <= now:
                 v.next_update_us = now + v.model.interval_us
                 due.append(k)

@@ -322,17 +322,16 @@ class Worldfile:
             return j
         if j < len(toks) and toks[j].kind == OPEN_TUPLE:
             values = []
-            for j in range(j + 1, len(toks)):
-                kind = toks[j].kind
-                if kind in (NUM, STRING):
-                    values.append(toks[j].text)
-                elif kind == CLOSE_TUPLE:
-                    break
-                else:
-                    raise self._error(j, 'syntax error in the tuple of %s: a tuple holds'
+            end = j + 1
+            while end < len(toks) and toks[end].kind != CLOSE_TUPLE:
+                if toks[end].kind not in (NUM, STRING):
+                    raise self._error(end, 'syntax error in the tuple of %s: a tuple holds'
                                       ' numbers and strings and ends on its line' % name.text)
+                values.append(toks[end].text)
+                end += 1
+            # (a tuple still open at the end of the file ends there, as in Stage)
             self._add_property(entity, name, values)
-            return j
+            return min(end, len(toks) - 1)
         raise self._error(j, 'syntax error: the value of %s must be on its line' % name.text)
 
     def _add_property(self, entity, tok, values):
