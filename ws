@@ -29,7 +29,10 @@ usage: ./ws COMMAND [ARGS]
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
   integration [F..]  rostest every test/*.test of every package (or just the files F)
   multihost [ARGS]   the multi-host tests (test/hosts/, pytest; root and ip netns, else skipped)
-  bench [NAME..]     run the benchmarks under bench/ (all, or bench/NAME.py)
+  bench [NAME..] [OPTIONS]
+                     run the benchmarks under bench/ (all, or bench/NAME.py); options
+                     (from the first one starting with -) go to each of them, e.g.
+                     ./ws bench stage_bench --peer STAGEROS --map willow-full.pgm
   shell              a bash with the workspace sourced, for running things by hand
   hosts CMD [ARGS]   hosts on this machine as network namespaces (root): up N | down | status |
                      exec I CMD.. | link I up/down | netem ARGS/off (src/multihost/README.md)
@@ -216,11 +219,12 @@ cmd_demo() {
 cmd_bench() {
   source_devel
   local_ros_network
-  local names=("$@") n
+  local names=() n
+  while (($#)) && [[ $1 != -* ]]; do names+=("$1"); shift; done
   ((${#names[@]})) || mapfile -t names < <(cd bench && ls ./*.py | sed 's|^\./||; s|\.py$||')
   for n in "${names[@]}"; do
     echo "bench: $n"
-    /usr/bin/python3 "bench/$n.py"
+    /usr/bin/python3 "bench/$n.py" "$@"
   done
 }
 

@@ -1,19 +1,29 @@
-"""stageros benchmark: the issue's figures for real Stage 4.3 + stage_ros 1.8.0, run on stage_lite.
+"""stageros benchmark: stage_lite's stageros, and real Stage's beside it when it is given.
 
-Run with `./ws bench stage_bench` (devel space sourced, /usr/bin/python3). It starts its own
-roscore on a free port and, for each world (the lesson's, and 20 / 50 / 100 erratics from
-bench/make_stage_worlds.py), starts `rosrun stage_ros stageros -g WORLD` with ~speedup -1 and
-the watchdog off, sends every robot one cmd_vel turning in place at 0.3 rad/s, and measures,
-with nothing subscribed but /clock:
+    ./ws bench stage_bench [--peer STAGEROS] [--map PLAN] [--runs N]
+
+Starts its own roscore on a free port. The worlds are the lesson's (its four erratics with
+1081-beam lasers) and 20 / 50 / 100 erratics (bench/make_stage_worlds.py) on PLAN: the
+workspace's office plan by default, or any floor plan of the lesson's size, such as
+stage_ros's willow-full.pgm (the lesson's original map; not in this repository). For each
+world, RUNS times (default 3), each simulator in turn (never two at once): stageros -g on the
+world with the watchdog off (stage_lite with ~speedup -1: as fast as possible, as real Stage
+runs headless), every robot sent one cmd_vel turning in place at 0.3 rad/s, and with nothing
+subscribed but /clock:
 * real-time factor: simulated seconds (from /clock) per wall second over WINDOW_S;
 * CPU: utime + stime of the process over the same window, in cores;
 * peak RSS (VmHWM) at the end of the run;
-* start to every robot's first scan: from the spawn (master up) until a scan of every robot has
-  arrived here (these subscribers are dropped before the window).
-Median of RUNS runs. Then, on the lesson world at real time (~speedup 1): CPU headless
-(-g) and with the Tk window on an Xvfb display (no -g). Prints a markdown table beside real
-Stage's figures (../shared/STAGE.md section 6, issue 18).
+* start to every robot's first scan: from the spawn (master up) until a scan of every robot
+  has arrived here (these subscribers are dropped before the window).
+Medians of the runs. Then the lesson at real time: stage_lite headless and with its window
+on an Xvfb display; real Stage with its window (its only real-time mode). Prints a markdown
+table; with a peer, the ratio of the real-time factors (stage_lite / real Stage).
+
+STAGEROS is real stageros's executable (stage_ros 1.8.0 on Stage 4.3.0 built from source:
+../shared/STAGE.md section 7 says how).
 """
+import argparse
+import contextlib
 import os
 import statistics
 import sys
@@ -21,6 +31,7 @@ import tempfile
 import threading
 import time
 
+import rosgraph
 import rospy
 from course_common.processes import peak_rss_mb
 from course_common.testing import Xvfb, cpu_ticks, spawn, wait_for
@@ -33,18 +44,13 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_stage_worlds  # bench/ is not a package: found through sys.path above
 
 RUNS = 3
-WINDOW_S = 8.0            # wall s of each flat-out measurement
+WINDOW_S = 8.0             # wall s of each flat-out measurement
 REAL_TIME_WINDOW_S = 20.0  # CPU at real time: 10 ms clock ticks need a long window
 TURN_RADPS = 0.3
-START_DEADLINE_S = 60.0
+START_DEADLINE_S = 90.0    # real Stage loads a large floor plan in a few seconds
 CLK_TCK = os.sysconf('SC_CLK_TCK')
-LESSON = make_stage_worlds.LESSON
-#: Real Stage 4.3.0 + stage_ros 1.8.0 (issue 18): (real-time factor, cores, peak RSS MB).
-REFERENCE = {'lesson': (26.1, 1.0, 647), 20: (3.63, 1.0, 661), 50: (1.39, 1.0, 687),
-             100: (0.61, 1.0, 732)}
-REFERENCE_START_S = 2.1
-REFERENCE_WINDOW = (0.23, 760)
 XVFB_SCREEN = (1280, 1024)  # px: room for the lesson's window
+OURS = ['rosrun', 'stage_ros', 'stageros']
 
 
 def cpu_s(pid):
@@ -71,18 +77,21 @@ class Bench:
         with self._lock:
             return self._clock
 
-    def run(self, world, robots, speedup=-1.0, gui=False, env=None, window_s=WINDOW_S):
+    def run(self, command, world, robots, extra=(), gui=False, env=None, window_s=WINDOW_S):
         """One stageros run: (real-time factor, cores, peak RSS MB, start-to-scans s)."""
         with self._lock:
             self._clock = None
             self._scans = set()
+        # a previous run's private parameters stay on the master
+        with contextlib.suppress(rosgraph.MasterError):
+            rosgraph.Master('/stage_bench').deleteParam('/stageros')
+
         def topic(i, name):  # stageros's names: relative with one robot
             return ('/robot_%d/' % i if robots > 1 else '') + name
         scan_subs = [rospy.Subscriber(topic(i, 'base_scan'), LaserScan, self._on_scan,
                                       callback_args=i)
                      for i in range(robots)]
-        args = ['rosrun', 'stage_ros', 'stageros', *([] if gui else ['-g']), world,
-                '_speedup:=%g' % speedup, '_base_watchdog_timeout:=0']
+        args = [*command, *([] if gui else ['-g']), world, *extra, '_base_watchdog_timeout:=0']
         start = time.monotonic()
         proc = spawn(args, env=env, stop_timeout_s=20.0)
         try:
@@ -91,7 +100,7 @@ class Bench:
             first_scans_s = time.monotonic() - start
             for sub in scan_subs:
                 sub.unregister()
-            pubs = [rospy.Publisher(topic(i, 'cmd_vel'), Twist, queue_size=1)
+            pubs = [rospy.Publisher(topic(i, 'cmd_vel'), Twist, queue_size=1, latch=True)
                     for i in range(robots)]
             for i, pub in enumerate(pubs):
                 wait_for(lambda p=pub: p.get_num_connections() > 0, START_DEADLINE_S,
@@ -121,43 +130,71 @@ class Bench:
         self.core.stop()
 
 
-def _median_runs(bench, world, robots):
-    runs = [bench.run(world, robots) for _ in range(RUNS)]
+def median(runs):
     return tuple(statistics.median(r[k] for r in runs) for k in range(4))
 
 
-def main():
+def figures(m):
+    rtf, cores, rss, start = m
+    return '%.2f | %.2f | %.0f | %.2f' % (rtf, cores, rss, start)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('--peer', help="real stageros's executable, measured beside stage_lite's")
+    ap.add_argument('--map', default=make_stage_worlds.OFFICE,
+                    help='floor plan of the worlds (default: the office plan)')
+    ap.add_argument('--runs', type=int, default=RUNS)
+    args = ap.parse_args(argv)
     out_dir = tempfile.mkdtemp(prefix='stage_bench_')
-    worlds = [('lesson', LESSON, 4)] + [(n, path, n) for n, path in
-                                       make_stage_worlds.write_worlds(out_dir).items()]
+    worlds = make_stage_worlds.write_worlds(out_dir, (4, 20, 50, 100), args.map)
+    sides = [('stage_lite', OURS, ['_speedup:=-1'])]
+    if args.peer:
+        sides.append(('Stage', [args.peer], []))
     bench = Bench()
     rows = []
     try:
-        for key, path, robots in worlds:
-            print('bench: %s, %d runs' % (key, RUNS), flush=True)
-            rows.append((key, robots, _median_runs(bench, path, robots)))
-        print('bench: lesson at real time, headless and with the window', flush=True)
-        headless = bench.run(LESSON, 4, speedup=1.0, window_s=REAL_TIME_WINDOW_S)
+        for n, path in worlds.items():
+            runs = {name: [] for name, _, _ in sides}
+            for k in range(args.runs):
+                for name, command, extra in sides:     # one simulator at a time, in turn
+                    print('bench: %d erratics, %s, run %d of %d' % (n, name, k + 1, args.runs),
+                          flush=True)
+                    runs[name].append(bench.run(command, path, n, extra))
+            rows.append((n, {name: median(r) for name, r in runs.items()}))
+        print('bench: the lesson at real time', flush=True)
+        lesson = worlds[4]
+        real_time = [('stage_lite, headless', bench.run(OURS, lesson, 4, ['_speedup:=1'],
+                                                        window_s=REAL_TIME_WINDOW_S))]
         with Xvfb(XVFB_SCREEN) as xvfb:
-            window = bench.run(LESSON, 4, speedup=1.0, gui=True,
-                               env={'DISPLAY': xvfb.display}, window_s=REAL_TIME_WINDOW_S)
+            env = {'DISPLAY': xvfb.display}
+            real_time.append(('stage_lite, Tk window (Xvfb)',
+                              bench.run(OURS, lesson, 4, ['_speedup:=1'], gui=True, env=env,
+                                        window_s=REAL_TIME_WINDOW_S)))
+            if args.peer:
+                real_time.append(('Stage, its window (Xvfb)',
+                                  bench.run([args.peer], lesson, 4, gui=True, env=env,
+                                            window_s=REAL_TIME_WINDOW_S)))
     finally:
         bench.close()
+    plan = os.path.basename(args.map)
     print()
-    print('| world (headless, ~speedup -1) | real-time factor (Stage) | CPU, cores (Stage) '
-          '| peak RSS MB (Stage) | start to every first scan s (Stage) |')
+    head = '| %s, headless, flat out | ' % plan + ' | '.join(
+        '%s: real-time factor | cores | peak RSS MB | start to every first scan s' % name
+        for name, _, _ in sides)
+    print(head + (' | stage_lite / Stage |' if args.peer else ' |'))
+    print('|---|' + '---|' * (4 * len(sides) + (1 if args.peer else 0)))
+    for n, by_side in rows:
+        cells = ' | '.join(figures(by_side[name]) for name, _, _ in sides)
+        ratio = (' | %.2f x' % (by_side['stage_lite'][0] / by_side['Stage'][0])
+                 if args.peer else '')
+        print('| %s | %s%s |' % ('the lesson (4 erratics)' if n == 4 else '%d erratics' % n,
+                                  cells, ratio))
+    print()
+    print('| the lesson at real time | real-time factor | cores | peak RSS MB | start s |')
     print('|---|---|---|---|---|')
-    for key, robots, (rtf, cores, rss, start) in rows:
-        ref = REFERENCE[key]
-        name = 'the lesson (4 erratics)' if key == 'lesson' else '%d erratics' % robots
-        print('| %s | %.2f (%.2f) | %.2f (%.1f) | %.0f (%d) | %.2f (%s) |'
-              % (name, rtf, ref[0], cores, ref[1], rss, ref[2], start,
-                 REFERENCE_START_S if key == 'lesson' else '-'))
-    print('| the lesson at real time, headless | %.2f | %.3f | %.0f | %.2f |'
-          % (headless[0], headless[1], headless[2], headless[3]))
-    print('| the lesson at real time, Tk window (Xvfb) | %.2f | %.3f (%.2f) | %.0f (%d) | '
-          '%.2f (2.4) |' % (window[0], window[1], REFERENCE_WINDOW[0], window[2],
-                            REFERENCE_WINDOW[1], window[3]))
+    for name, (rtf, cores, rss, start) in real_time:
+        print('| %s | %.2f | %.3f | %.0f | %.2f |' % (name, rtf, cores, rss, start))
 
 
 if __name__ == '__main__':

@@ -1,9 +1,9 @@
 """Model-only Stage benchmark: world load, ray casts and motion per step, no ROS.
 
-Run: `/usr/bin/python3 bench/stage_raycast_bench.py [REPEATS]` with the devel space sourced
-(or PYTHONPATH=src/stage/stage_lite/src). Worlds: the lesson (4 erratics) and 20 / 50 / 100
-erratics from bench/make_stage_worlds.py, every robot turning in place at 0.3 rad/s (the
-issue's benchmark). Each world runs in a fresh child process so its load time and peak RSS
+Run: `/usr/bin/python3 bench/stage_raycast_bench.py [--map PLAN] [--repeats N]` with the devel
+space sourced (or PYTHONPATH=src/stage/stage_lite/src). Worlds: the lesson's 4 erratics and
+20 / 50 / 100 erratics from bench/make_stage_worlds.py on PLAN (default: the office plan),
+every robot turning in place at 0.3 rad/s (stage_bench's load). Each world runs in a fresh child process so its load time and peak RSS
 are its own. Per world: load time, steps timed in REPEATS runs of STEPS steps (median of the
 runs), of which the ray cast, the model real-time factor (interval_sim / step time), rays per
 second, and the process's peak RSS.
@@ -26,7 +26,7 @@ CHILD_TIMEOUT_S = 900.0  # one world's child: 100 erratics on a loaded machine t
 def measure(path, repeats):
     """Runs in the child: one world, printed as one JSON line."""
     t0 = time.perf_counter()
-    from stage_lite.world import load_world
+    from stage_lite.model.world import load_world
     w = load_world(path)
     load_s = time.perf_counter() - t0
     for i in range(len(w.robots)):
@@ -52,19 +52,28 @@ def measure(path, repeats):
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
+    argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] == '--child':
         measure(argv[1], int(argv[2]))
         return
-    repeats = int(argv[0]) if argv else 5
+    plan, repeats = None, 5
+    while argv:
+        option, value, argv = argv[0], argv[1], argv[2:]
+        if option == '--map':
+            plan = value
+        elif option == '--repeats':
+            repeats = int(value)
+        else:
+            raise SystemExit('usage: stage_raycast_bench.py [--map PLAN] [--repeats N]')
     # Here, not at the top: the children import only the model, so their peak RSS is its own.
     from course_common.processes import run_to_exit
     sys.path.insert(0, HERE)
     import make_stage_worlds
-    worlds = [('lesson', make_stage_worlds.LESSON)]
     with tempfile.TemporaryDirectory() as tmp:
-        made = make_stage_worlds.write_worlds(tmp)
-        worlds += [('%d erratics' % n, p) for n, p in sorted(made.items())]
+        made = make_stage_worlds.write_worlds(tmp, (4, 20, 50, 100),
+                                              plan or make_stage_worlds.OFFICE)
+        worlds = [('the lesson' if n == 4 else '%d erratics' % n, p)
+                  for n, p in sorted(made.items())]
         print('| world | robots | beams | load s | step ms | of which rays ms | real-time factor'
               ' | Mrays/s | peak RSS MB |')
         print('|---|---|---|---|---|---|---|---|---|')

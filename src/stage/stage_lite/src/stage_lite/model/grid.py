@@ -23,8 +23,14 @@ cell and layer. Which entry comes first in a cell is decided by when it was draw
 sequence number), as in Stage's per-cell vectors.
 """
 import math
+import os
 
 import numpy as np
+
+# The threads of the parallel ray cast sleep when idle: at real time stageros waits about
+# 100 ms between steps, and OpenMP's default (spinning up to 300 000 times first) would burn
+# part of a core meanwhile. Read by OpenMP when numba first starts its threads.
+os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
 
 try:
     from numba import njit, prange
@@ -241,19 +247,53 @@ def sample_angles(start, incr, count, out, at):
         a = f + incr
 
 
+@njit(cache=True)
+def _scan_angles(origins, incr, offsets, angles):
+    for s in range(origins.shape[0]):
+        sample_angles(origins[s, 3], incr[s], offsets[s + 1] - offsets[s], angles, offsets[s])
+
+
+@njit(cache=True)
+def _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
+              nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
+              ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
+              out_model):
+    s = sensor[k]
+    r, m = trace(origins[s, 0], origins[s, 1], origins[s, 2], angles[k], rmax[s], ppm,
+                 ray_class[s], root[s], layer, rx0, ry0, nrx, nry, reg_count, reg_static,
+                 reg_dyn, st_ray, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                 blk_zmax, model_root, model_rr)
+    out_range[k] = r
+    out_model[k] = m
+
+
+@njit(cache=True)
+def cast_scans(origins, incr, offsets, sensor, rmax, ray_class, root, layer, ppm, rx0, ry0,
+               nrx, nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
+               ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, angles, out_range,
+               out_model):
+    """Every ray of every sensor (per sensor: its first ray's pose x, y, z, angle, its angle
+    increment, its range; sensor[k] the sensor of ray k), in this thread."""
+    _scan_angles(origins, incr, offsets, angles)
+    for k in range(sensor.shape[0]):
+        _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
+                  nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
+                  ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
+                  out_model)
+
+
 @njit(parallel=True, cache=True)
-def cast_all(ray_x, ray_y, ray_z, ray_a, ray_range, ray_class, ray_root, layer, ppm,
-             rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head,
-             ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr,
-             out_range, out_model):
-    """Every ray at once (one thread per share of the rays)."""
-    for k in prange(ray_x.shape[0]):
-        r, m = trace(ray_x[k], ray_y[k], ray_z[k], ray_a[k], ray_range[k], ppm, ray_class[k],
-                     ray_root[k], layer, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-                     st_ray, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
-                     blk_zmax, model_root, model_rr)
-        out_range[k] = r
-        out_model[k] = m
+def cast_scans_parallel(origins, incr, offsets, sensor, rmax, ray_class, root, layer, ppm, rx0,
+                        ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head,
+                        ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+                        model_root, model_rr, angles, out_range, out_model):
+    """cast_scans, the rays shared among numba's threads."""
+    _scan_angles(origins, incr, offsets, angles)
+    for k in prange(sensor.shape[0]):
+        _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
+                  nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
+                  ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
+                  out_model)
 
 
 # ---- moving bodies: Stage's Map / UnMap / TestCollision ----------------------------------
@@ -363,3 +403,47 @@ def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, re
                         return m2
                     e = ent_next[e]
     return NO_HIT
+
+
+@njit(cache=True)
+def _redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x,
+            rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block,
+            ent_next, ent_seq, free_state, ent_free, page_free):
+    """UnMap then Map of each block at its model's body pose (x, y, cos, sin): Stage's
+    LocalToPixels, floor((x + px cos - py sin) * ppm), in Stage's order of operations."""
+    for i in range(blocks.shape[0]):
+        b = blocks[i]
+        gx, gy, cosa, sina = poses[i, 0], poses[i, 1], poses[i, 2], poses[i, 3]
+        n = pts_off[b + 1] - pts_off[b]
+        for j in range(n):
+            px = pts[pts_off[b] + j, 0]
+            py = pts[pts_off[b] + j, 1]
+            vx[j] = math.floor((gx + px * cosa - py * sina) * ppm)
+            vy[j] = math.floor((gy + px * sina + py * cosa) * ppm)
+        unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
+                    reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, ent_free,
+                    page_free)
+        map_block(b, layer, vx[:n], vy[:n], seqs[i], rc_start, rc_len, rc_x, rc_y, rx0, ry0,
+                  nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next,
+                  ent_seq, free_state, ent_free, page_free)
+
+
+@njit(cache=True)
+def move(blocks, new_poses, old_poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start,
+         rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
+         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free,
+         page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
+    """ModelPosition::Move's grid work: the robot's blocks drawn in `layer` at their new
+    poses, tested; on a collision drawn back at the old ones (seqs: two rows, the drawing
+    numbers of each). Returns collides()'s answer."""
+    _redraw(blocks, new_poses, seqs[0], layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len,
+            rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head,
+            ent_block, ent_next, ent_seq, free_state, ent_free, page_free)
+    hit = collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
+                   reg_static, reg_dyn, st_coll, blk_class, dyn_head, ent_block, ent_next,
+                   blk_model, blk_zmin, blk_zmax, model_root, model_obstacle)
+    if hit != NO_HIT:
+        _redraw(blocks, old_poses, seqs[1], layer, ppm, pts, pts_off, vx, vy, rc_start,
+                rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
+                dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free, page_free)
+    return hit

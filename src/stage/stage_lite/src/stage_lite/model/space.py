@@ -11,6 +11,9 @@ from . import grid
 
 REGION = grid.REGION
 MARGIN_REGIONS = 4        # table margin around the bodies, regions (2.56 m at 2 cm cells)
+#: From this many rays in a step, they are shared among numba's threads (below it, starting
+#: the threads costs more than it saves).
+PARALLEL_RAYS = 2000
 
 
 class DynamicBlock:
@@ -100,6 +103,14 @@ class Space:
     def _build_dynamic(self, blocks):
         n = len(blocks)
         caps = [_capacity(b.block, self.ppm) for b in blocks]
+        self.blk_pts = (np.vstack([b.block.pts for b in blocks]) if n
+                        else np.zeros((0, 2))).astype(np.float64)
+        sizes = [len(b.block.pts) for b in blocks]
+        self.blk_pts_off = np.concatenate(([0], np.cumsum(sizes))).astype(np.int64)
+        self.blk_radius = np.array([float(np.hypot(*b.block.pts.T).max()) if len(b.block.pts)
+                                    else 0.0 for b in blocks])
+        self._vx = np.zeros(max(sizes, default=1), np.int64)
+        self._vy = np.zeros(max(sizes, default=1), np.int64)
         self.blk_model = np.array([b.model.index for b in blocks], np.int64)
         self.blk_zmin = np.array([b.zmin for b in blocks], np.float64)
         self.blk_zmax = np.array([b.zmax for b in blocks], np.float64)
@@ -148,33 +159,42 @@ class Space:
         for name, table in new.items():
             setattr(self, name, table)
 
-    def hold(self, xs, ys):
-        """Grows the table if cells xs, ys (int arrays) fall outside it."""
-        x0, x1 = int(xs.min()), int(xs.max())
-        y0, y1 = int(ys.min()), int(ys.max())
+    def hold(self, blocks, poses):
+        """Grows the table if the blocks at these body poses (rows x, y, cos, sin) could
+        reach out of it."""
+        r = self.blk_radius[blocks] * self.ppm + 2
+        xs = poses[:, 0] * self.ppm
+        ys = poses[:, 1] * self.ppm
+        x0, x1 = int(np.floor((xs - r).min())), int(np.ceil((xs + r).max()))
+        y0, y1 = int(np.floor((ys - r).min())), int(np.ceil((ys + r).max()))
         if ((x0 >> grid.RBITS) < self.rx0 or (y0 >> grid.RBITS) < self.ry0
                 or (x1 >> grid.RBITS) >= self.rx0 + self.nrx
                 or (y1 >> grid.RBITS) >= self.ry0 + self.nry):
             self._resize(x0, y0, x1, y1)
 
-    # ---- moving bodies ---------------------------------------------------------------------
-    def draw(self, blocks, vertices, layer, seq=None):
-        """Erases blocks (indices) from `layer` and draws them at `vertices` (one (vx, vy)
-        pair of int arrays per block): Stage's UnMap then Map. All blocks of one model share
-        one drawing sequence number, given or the next one."""
-        if seq is None:
-            seq = self.next_seq()
-        for b, (vx, vy) in zip(blocks, vertices, strict=True):
-            self.hold(vx, vy)
-            grid.unmap_block(b, layer, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
-                             self.rx0, self.ry0, self.nrx, self.nry, self.reg_count,
-                             self.reg_dyn, self.reg_dyncount, self.dyn_head, self.ent_block,
-                             self.ent_next, self.free_state, self.ent_free, self.page_free)
-            grid.map_block(b, layer, vx, vy, seq, self.rc_start, self.rc_len, self.rc_x,
-                           self.rc_y, self.rx0, self.ry0, self.nrx, self.nry, self.reg_count,
-                           self.reg_dyn, self.reg_dyncount, self.dyn_head, self.ent_block,
-                           self.ent_next, self.ent_seq, self.free_state, self.ent_free,
-                           self.page_free)
+    def draw(self, blocks, poses, layer, seqs):
+        """Stage's UnMap then Map of blocks (int array) at their body poses (rows x, y, cos,
+        sin) in `layer`, each with its drawing's sequence number."""
+        self.hold(blocks, poses)
+        grid._redraw(blocks, poses, seqs, layer, self.ppm, self.blk_pts, self.blk_pts_off,
+                     self._vx, self._vy, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
+                     self.rx0, self.ry0, self.nrx, self.nry, self.reg_count, self.reg_dyn,
+                     self.reg_dyncount, self.dyn_head, self.ent_block, self.ent_next,
+                     self.ent_seq, self.free_state, self.ent_free, self.page_free)
+
+    def move(self, blocks, new_poses, old_poses, seqs, layer):
+        """ModelPosition::Move's grid work (grid.move): the blocks drawn at the new poses,
+        tested, drawn back at the old ones on a collision; seqs: (2, blocks) drawing numbers.
+        Returns grid.NO_HIT or what was hit."""
+        self.hold(blocks, new_poses)
+        return grid.move(blocks, new_poses, old_poses, seqs, layer, self.ppm, self.blk_pts,
+                         self.blk_pts_off, self._vx, self._vy, self.rc_start, self.rc_len,
+                         self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx, self.nry,
+                         self.reg_count, self.reg_static, self.reg_dyn, self.reg_dyncount,
+                         self.st_coll, self.blk_class, self.dyn_head, self.ent_block,
+                         self.ent_next, self.ent_seq, self.free_state, self.ent_free,
+                         self.page_free, self.blk_model, self.blk_zmin, self.blk_zmax,
+                         self.model_root, self.model_obstacle)
 
     def next_seq(self):
         self.seq += 1
@@ -190,29 +210,19 @@ class Space:
                              self.blk_zmax, self.model_root, self.model_obstacle)
 
     # ---- rays ------------------------------------------------------------------------------
-    def cast(self, x, y, z, a, rng, ray_class, root, layer):
-        """Every ray (arrays): (range m float64, model hit int64 or -1)."""
-        out_range = np.empty(x.shape[0], np.float64)
-        out_model = np.empty(x.shape[0], np.int64)
-        grid.cast_all(x, y, z, a, rng, ray_class, root, layer, self.ppm, self.rx0, self.ry0,
-                      self.nrx, self.nry, self.reg_count, self.reg_static, self.reg_dyn,
-                      self.st_ray, self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
-                      self.blk_model, self.blk_zmin, self.blk_zmax, self.model_root,
-                      self.model_rr, out_range, out_model)
+    def cast(self, origins, incr, offsets, sensor, rmax, ray_class, root, layer):
+        """The rays of sensors (per sensor: its first ray's pose x, y, z, angle, its angle
+        increment, its range, its beam height's class and its robot's root model; offsets
+        of each sensor's rays; sensor[k]: the sensor of ray k): (ranges m, models hit or -1).
+        Many rays are shared among numba's threads, a few are cast in this one."""
+        n = sensor.shape[0]
+        out_range = np.empty(n, np.float64)
+        out_model = np.empty(n, np.int64)
+        angles = np.empty(n, np.float64)
+        cast = grid.cast_scans_parallel if n >= PARALLEL_RAYS else grid.cast_scans
+        cast(origins, incr, offsets, sensor, rmax, ray_class, root, layer, self.ppm, self.rx0,
+             self.ry0, self.nrx, self.nry, self.reg_count, self.reg_static, self.reg_dyn,
+             self.st_ray, self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
+             self.blk_model, self.blk_zmin, self.blk_zmax, self.model_root, self.model_rr,
+             angles, out_range, out_model)
         return out_range, out_model
-
-    def static_cells(self):
-        """(x, y) int arrays of every cell holding a static body (for pictures and maps)."""
-        pages = np.flatnonzero(self.reg_static.reshape(-1) >= 0)
-        xs, ys = [], []
-        for reg in pages:
-            page = self.reg_static[reg]
-            used = np.flatnonzero((self.st_coll[page] != 0)
-                                  | (self.st_ray[:, page, :] >= 0).any(axis=0))
-            rx = reg % self.nrx + self.rx0
-            ry = reg // self.nrx + self.ry0
-            xs.append(rx * REGION + used % REGION)
-            ys.append(ry * REGION + used // REGION)
-        if not xs:
-            return np.zeros(0, np.int64), np.zeros(0, np.int64)
-        return np.concatenate(xs), np.concatenate(ys)

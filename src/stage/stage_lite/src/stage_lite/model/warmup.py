@@ -12,23 +12,26 @@ import sys
 import tempfile
 import time
 
+# a laser with enough beams for the threads too (space.PARALLEL_RAYS)
 WORLD = '''resolution 0.02
-define laser ranger ( sensor( range [ 0 5 ] fov 180 samples 19 ) )
+define laser ranger ( sensor( range [ 0 5 ] fov 180 samples %d ) )
 model( bitmap "plan.pgm" size [ 2 2 0.5 ] pose [ 0 0 0 10 ] )
 model( pose [ 0.6 0 0 0 ] size [ 0.1 0.3 0.5 ] )
 position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) )
+position( pose [ -0.6 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) )
 '''
 
 
 def warm():
     """Loads and steps the world: every kernel compiled (or loaded from the cache)."""
+    from .space import PARALLEL_RAYS
     from .world import load_world
     with tempfile.TemporaryDirectory() as tmp:
         with open(os.path.join(tmp, 'plan.pgm'), 'wb') as f:
             f.write(b'P5 4 4 255\n' + bytes([0] * 4 + [255, 0, 255, 255] + [255] * 4 + [0] * 4))
         path = os.path.join(tmp, 'warm.world')
         with open(path, 'w') as f:
-            f.write(WORLD)
+            f.write(WORLD % PARALLEL_RAYS)
         world = load_world(path)
         world.set_command(0, 1.0, 0.0, 0.0)
         for _ in range(6):

@@ -271,12 +271,17 @@ class World:
         for r in self.robots:
             r.tree = _tree(r.model)
             r.blocks = [(m, [index[id(d)] for d in dynamic if d.model is m]) for m in r.tree]
+            r.blocks = [(m, ks) for m, ks in r.blocks if ks]
+            r.block_ids = np.array([k for _, ks in r.blocks for k in ks], np.int64)
         self._dynamic = dynamic
         # load-time drawings in model order, both layers (sequence = the model's index)
-        for d_model in sorted({d.model.index for d in dynamic}):
-            ks = [k for k, d in enumerate(dynamic) if d.model.index == d_model]
-            for layer in (0, 1):
-                self.space.draw(ks, [dynamic[k].vertices for k in ks], layer, seq=d_model)
+        for r in self.robots:
+            for m, ks in r.blocks:
+                blocks = np.array(ks, np.int64)
+                poses = np.repeat([body_row(m)], len(ks), axis=0)
+                seqs = np.full(len(ks), m.index, np.int64)
+                for layer in (0, 1):
+                    self.space.draw(blocks, poses, layer, seqs)
         self._prepare_rays()
 
     @staticmethod
@@ -290,19 +295,20 @@ class World:
     def _prepare_rays(self):
         views = [(r, v) for r in self.robots for v in r.rangers]
         self._views = views
-        counts = np.array([v.samples for _, v in views], np.int64)
-        self._ray_offsets = np.concatenate(([0], np.cumsum(counts))).astype(np.int64)
-        total = int(self._ray_offsets[-1])
-        self._ray_class = np.repeat(np.array([self._ray_zs.index(v.beam_z) for _, v in views],
-                                             np.int64), counts)
-        self._ray_root = np.repeat(np.array([v.model.root.index for _, v in views], np.int64),
-                                   counts)
-        self._ray_range = np.repeat(np.array([v.range_max for _, v in views], np.float64),
-                                    counts)
-        self._ray_x = np.empty(total)
-        self._ray_y = np.empty(total)
-        self._ray_z = np.empty(total)
-        self._ray_a = np.empty(total)
+        self._rays = self._ray_tables(range(len(views)))
+
+    def _ray_tables(self, due):
+        """The per-sensor tables of the rangers `due` (indices into _views) for Space.cast."""
+        views = [self._views[k][1] for k in due]
+        counts = np.array([v.samples for v in views], np.int64)
+        return dict(
+            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
+            sensor=np.repeat(np.arange(len(views), dtype=np.int64), counts),
+            incr=np.array([Ranger.sample_increment(v.sensor) for v in views], np.float64),
+            rmax=np.array([v.range_max for v in views], np.float64),
+            ray_class=np.array([self._ray_zs.index(v.beam_z) for v in views], np.int64),
+            root=np.array([v.model.root.index for v in views], np.int64),
+            origins=np.empty((len(views), 4), np.float64))
 
     # ---- the interface -------------------------------------------------------------------
     def set_command(self, i, vx, vy, wz):
@@ -324,8 +330,9 @@ class World:
         for r in self.robots:
             if r.model.pose != r.initial_global:
                 r.model.pose = r.initial_global
+                poses = self._body_rows(r)
                 for layer in (0, 1):
-                    self._draw_tree(r, layer)
+                    self.space.draw(r.block_ids, poses, layer, self._seqs(r))
             r.stalled = False
 
     def step(self):
@@ -383,22 +390,28 @@ class World:
             return
         m = r.model
         start = m.pose
+        old = self._body_rows(r)
         m.pose = pose_add(start, (vx * dt, vy * dt, vz * dt, stage_normalize(va * dt)))
-        self._draw_tree(r, layer)
-        if self.space.collides(np.array([k for _, ks in r.blocks for k in ks], np.int64),
-                               layer) != grid.NO_HIT:
+        if not len(r.block_ids):
+            r.stalled = False
+            return
+        new = self._body_rows(r)
+        seqs = np.array([self._seqs(r), self._seqs(r)])
+        if self.space.move(r.block_ids, new, old, seqs, layer) != grid.NO_HIT:
             m.pose = start
-            self._draw_tree(r, layer)
             r.stalled = True
         else:
             r.stalled = False
 
-    def _draw_tree(self, r, layer):
-        """MapWithChildren: the robot and its descendants, each a drawing of its own."""
-        for m, ks in r.blocks:
-            if ks:
-                self.space.draw(ks, [m.pixel_vertices(self._dynamic[k].block, self.ppm)
-                                     for k in ks], layer)
+    @staticmethod
+    def _body_rows(r):
+        """Per block of the robot's tree: its model's body pose (x, y, cos, sin)."""
+        return np.array([row for m, ks in r.blocks for row in [body_row(m)] * len(ks)])
+
+    def _seqs(self, r):
+        """Per block of the robot's tree: a new drawing number per model (MapWithChildren)."""
+        return np.array([s for m, ks in r.blocks for s in [self.space.next_seq()] * len(ks)],
+                        np.int64)
 
     # ---- rays --------------------------------------------------------------------------
     def _cast_rays(self, now, layer):
@@ -407,36 +420,32 @@ class World:
             if v.next_update_us <= now:
                 v.next_update_us = now + v.model.interval_us
                 due.append(k)
-        if not due:
-            return
-        off = self._ray_offsets
-        for k in due:
-            r, v = self._views[k]
-            x, y, z, a = v.model.ray_origin(v.sensor)
-            s, e = off[k], off[k + 1]
-            self._ray_x[s:e] = x
-            self._ray_y[s:e] = y
-            self._ray_z[s:e] = z
-            grid.sample_angles(a, Ranger.sample_increment(v.sensor), v.samples, self._ray_a, s)
-        if len(due) == len(self._views):
-            sel = slice(None)
-        else:
-            sel = np.concatenate([np.arange(off[k], off[k + 1]) for k in due])
-        rng, hit = self.space.cast(self._ray_x[sel], self._ray_y[sel], self._ray_z[sel],
-                                   self._ray_a[sel], self._ray_range[sel],
-                                   self._ray_class[sel], self._ray_root[sel], layer)
+        if due:
+            self.cast_rays(due, layer)
+
+    def cast_rays(self, due=None, layer=None):
+        """Casts the rays of the rangers `due` (indices, default all) from the robots' poses
+        now, through `layer` (default: the one the next step's rays read)."""
+        if layer is None:
+            layer = (self.updates + 1) % 2
+        tables = self._rays if due is None or len(due) == len(self._views) \
+            else self._ray_tables(due)
+        due = range(len(self._views)) if due is None else due
+        views = [self._views[k][1] for k in due]
+        origins = tables['origins']
+        for i, v in enumerate(views):
+            origins[i] = v.model.ray_origin(v.sensor)
+        rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
+                                   tables['rmax'], tables['ray_class'], tables['root'], layer)
         rr = self.space.model_rr
-        at = 0
-        for k in due:
-            r, v = self._views[k]
-            n = v.samples
-            ranges = rng[at:at + n]
-            models = hit[at:at + n]
-            at += n
+        intensities = np.where(hit >= 0, rr[np.maximum(hit, 0)], 0.0)
+        off = tables['offsets']
+        for i, v in enumerate(views):
+            ranges = rng[off[i]:off[i + 1]]
             if any(v.noise):
                 ranges = self._noisy(ranges, v)
             v.ranges[:] = ranges
-            v.intensities[:] = np.where(models >= 0, rr[np.maximum(models, 0)], 0.0)
+            v.intensities[:] = intensities[off[i]:off[i + 1]]
             v.has_data = True
 
     def scan_from(self, view, pose):
@@ -448,16 +457,14 @@ class World:
         keep = robot.pose
         robot.pose = pose
         try:
-            x, y, z, a = view.model.ray_origin(view.sensor)
+            tables = self._ray_tables([k for k, (_, v) in enumerate(self._views)
+                                       if v is view])
+            tables['origins'][0] = view.model.ray_origin(view.sensor)
         finally:
             robot.pose = keep
-        n = view.samples
-        angles = np.empty(n)
-        grid.sample_angles(a, Ranger.sample_increment(view.sensor), n, angles, 0)
-        rng, _ = self.space.cast(np.full(n, x), np.full(n, y), np.full(n, z), angles,
-                                 np.full(n, view.range_max),
-                                 np.full(n, self._ray_zs.index(view.beam_z), np.int64),
-                                 np.full(n, view.model.root.index, np.int64), self.updates % 2)
+        rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
+                                 tables['sensor'], tables['rmax'], tables['ray_class'],
+                                 tables['root'], self.updates % 2)
         return rng.astype(np.float32)
 
     def _noisy(self, ranges, v):
@@ -479,6 +486,12 @@ class World:
             self._occupancy = floor.filled(self._statics, self._static_cells,
                                            [r.start_pose[:2] for r in self.robots], self.ppm)
         return self._occupancy
+
+
+def body_row(m):
+    """The model's body pose as the grid kernels take it: (x, y, cos a, sin a)."""
+    x, y, _, a = m.body_pose()
+    return (x, y, math.cos(a), math.sin(a))
 
 
 def _tree(model):
