@@ -5,8 +5,8 @@ space sourced (or PYTHONPATH=src/stage/stage_lite/src). Worlds: the lesson's 4 e
 20 / 50 / 100 erratics from bench/make_stage_worlds.py on PLAN (default: the office plan),
 every robot turning in place at 0.3 rad/s (stage_bench's load). Each world runs in a fresh
 child process so its load time and peak RSS are its own. Per world: load time, steps timed in
-REPEATS runs of STEPS steps (median of the runs), of which the ray cast, the model real-time factor (interval_sim / step time), rays per
-second, and the process's peak RSS.
+REPEATS runs of STEPS steps (median of the runs), of which the ray cast, the model real-time
+factor (interval_sim / step time), rays per second, and the process's peak RSS.
 """
 
 import json
