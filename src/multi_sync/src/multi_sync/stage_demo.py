@@ -95,7 +95,7 @@ def run(args):
     """Runs the demo; returns the process exit code."""
     os.makedirs(args.out, exist_ok=True)
     world_png = os.path.join(args.out, 'stage_world.png')
-    launch_args = ['monitor:=true']
+    launch_args = ['monitor:=true', 'pictures:=true']
     if args.speed != DEFAULT_SPEED_MPS:
         launch_args.append('speed_mps:=%g' % args.speed)
     # No DISPLAY: stageros runs headless (its WARN says so), as a demo on a server must.

@@ -57,6 +57,11 @@ class StagerosInterfaceTest(StageTestCase):
         self.assertNotIn('/map', types)
         wait_for(lambda: '/reset_positions' in service_names(), START_DEADLINE_S,
                  'the reset_positions service')
+        # stageros's services and rospy's own: ~save_image is an extra, off by default
+        self.assertEqual(sorted(s for s in service_names() if s.startswith('/stageros/')
+                                or s == '/reset_positions'),
+                         ['/reset_positions', '/stageros/get_loggers',
+                          '/stageros/set_logger_level'])
         self.assertIs(rospy.get_param('/use_sim_time'), True)
 
     def test_odom_and_ground_truth_at_the_start(self):

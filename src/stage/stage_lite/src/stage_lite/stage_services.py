@@ -42,7 +42,9 @@ class StageServices:
         if node.params.publish_map:
             self._publish_map()
         self.reset_srv = rospy.Service('reset_positions', Empty, self.handle_reset)
-        self.image_srv = rospy.Service('~save_image', SaveImage, self.handle_save_image)
+        # an extra of stage_lite's: off until asked for, so the interface stays stageros's
+        self.image_srv = (rospy.Service('~save_image', SaveImage, self.handle_save_image)
+                          if node.params.save_image_service else None)
 
     # -------------------------------------------------------------- called under node.lock
     def after_step(self):

@@ -18,7 +18,8 @@ Global:
               per robot; with ~publish_map: /map (nav_msgs/OccupancyGrid, latched, frame map)
               and /tf_static map -> every robot's odom (identity).
   Services    reset_positions (std_srvs/Empty): every robot to its start pose, stall cleared;
-              ~save_image (stage_lite/SaveImage): a PNG of the world, robots, beams, trails.
+              ~save_image (stage_lite/SaveImage, with ~save_image_service only): a PNG of
+              the world, robots, beams, trails.
   Sets        /use_sim_time true, before the world is loaded (before init_node when the
               master is up); the node's own rospy time follows the sim time it publishes.
 Parameters (private):
@@ -29,6 +30,7 @@ Parameters (private):
   ~tf2_frames (bool, false): frame ids without the leading '/' (tf2-clean).
   ~publish_stall (bool, false), ~odom_child_frame (bool, false: odom child_frame_id =
       base_footprint frame), ~publish_map (bool, false), ~map_resolution (float, 0.05, m),
+  ~save_image_service (bool, false): offer ~save_image;
   ~image_path (str, ~/.ros/stage_lite.png): where ~save_image writes for an empty path.
 Command line: -g no window (without -g a Tk window opens when there is a display, else a
 WARN and headless), -u model names as namespaces; the world file last.

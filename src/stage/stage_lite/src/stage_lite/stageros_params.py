@@ -25,6 +25,7 @@ class StageParams:
     odom_child_frame: bool = False
     publish_map: bool = False
     map_resolution_m: float = 0.05
+    save_image_service: bool = False
     image_path: str = DEFAULT_IMAGE_PATH
 
 
@@ -51,5 +52,7 @@ def load_params():
         publish_map=check_flag('~publish_map', get_private('publish_map', False)),
         map_resolution_m=check_number('~map_resolution', get_private('map_resolution', 0.05),
                                       low=0.0, high=10.0, low_open=True),
+        save_image_service=check_flag('~save_image_service',
+                                      get_private('save_image_service', False)),
         image_path=check_text('~image_path', get_private('image_path', DEFAULT_IMAGE_PATH),
                               'a non-empty path', strip=False))
