@@ -20,7 +20,7 @@ on an Xvfb display; real Stage with its window (its only real-time mode). Prints
 table; with a peer, the ratio of the real-time factors (stage_lite / real Stage).
 
 STAGEROS is real stageros's executable (stage_ros 1.8.0 on Stage 4.3.0 built from source:
-../shared/STAGE.md section 7 says how).
+src/stage/stage_lite/test/golden/README.md says how).
 """
 import argparse
 import contextlib
