@@ -236,3 +236,43 @@ def test_stage_leniency_loads(tmp_path):
     w = load_world(str(p))
     r = w.robots[0]
     assert (w.speedup, r.drive, r.color_rgb) == (0.0, 'diff', (1.0, 0.0, 0.0))
+
+
+def test_a_robot_driving_far_out_grows_the_grid(tmp_path):
+    p = tmp_path / 'w.world'
+    p.write_text('resolution 0.02\nmodel( pose [ 0 2 0 0 ] size [ 1 0.2 0.5 ] )\n'
+                 'position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ]'
+                 ' ranger( sensor( range [ 0 5 ] fov 90 samples 3 ) ) )\n'
+                 'position( pose [ 0 -1 0 0 ] size [ 0.3 0.3 0.2 ] )')
+    w = load_world(str(p))
+    w.set_command(0, 1.0, 0.0, 0.0)
+    run(w, 600)                      # 60 m east, far past the grid made at the load
+    a = w.robots[0]
+    assert a.pose[0] == pytest.approx(60.0, abs=1e-6) and not a.stalled
+    assert a.rangers[0].ranges.tolist() == [5.0, 5.0, 5.0]
+    w.set_command(0, -1.0, 0.0, 0.0)
+    run(w, 600)                      # and back
+    assert a.pose[0] == pytest.approx(0.0, abs=1e-6)
+    w.set_command(0, 0.0, 0.0, math.pi / 2)
+    run(w, 10)                       # a quarter turn: facing the wall 2 m north
+    w.set_command(0, 0.0, 0.0, 0.0)
+    run(w, 2)
+    assert a.rangers[0].ranges[1] == pytest.approx(1.9, abs=0.03)
+
+
+@pytest.mark.parametrize('text, robots', [
+    ('model( size [ 1 1 1 ] )', 0),                       # no robot
+    ('position( )\nposition( pose [ 2 0 0 0 ] )', 2),     # robots only, no laser
+    ('', 0),                                              # nothing at all
+])
+def test_sparse_worlds_step(tmp_path, text, robots):
+    p = tmp_path / 'w.world'
+    p.write_text(text)
+    w = load_world(str(p))
+    assert len(w.robots) == robots
+    for i in range(robots):
+        w.set_command(i, 0.3, 0.0, 0.1)
+    run(w, 5)
+    assert w.sim_time_s == pytest.approx(0.5)
+    occ, _, _, _ = w.occupancy()
+    assert occ.ndim == 2
