@@ -64,7 +64,7 @@ class RobotOutput:
         if has_subscribers(self.truth_pub):
             out.append((self.truth_pub, wire.odometry_frame(
                 seq, secs, nsecs, self.odom_frame, self.empty,
-                robot.pose, robot.truth_twist)))
+                robot.pose, robot.truth_twist, wire.transform_quaternion)))
         for pub, template, ranger in zip(self.scan_pubs, self.templates, robot.rangers,
                                          strict=True):
             # stageros publishes a ranger once it has ranges: after its first update

@@ -1,5 +1,4 @@
 """stageros's services and latched extras: reset_positions, ~save_image, /map and trails."""
-import numpy as np
 import rospy
 from course_common.save_image import answer_save_image
 from geometry_msgs.msg import TransformStamped
@@ -36,8 +35,7 @@ class StageServices:
         self.node = node
         self.trails = picture.Trails(len(node.world.robots))
         self._image_base = None
-        self._angles = [[r.angle_min + r.angle_increment * np.arange(r.samples)
-                         for r in robot.rangers] for robot in node.world.robots]
+        self._angles = [[r.local_angles() for r in robot.rangers] for robot in node.world.robots]
         self._latched = []
         if node.params.publish_map:
             self._publish_map()

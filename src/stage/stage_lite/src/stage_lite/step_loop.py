@@ -14,7 +14,8 @@ FIRST_STEP_WAIT_S = 0.1
 class StepLoop(DeadlineLoop):
     """Calls node.step() on the Pacer's schedule in its own thread until stopped or shut down.
 
-    Stops ROS when the world's quit_time is reached (Stage's quit_time ends stageros). An
+    Stops stepping when the world's quit_time is reached: as in stageros, the world stands
+    still (the clock frozen) and the node stays up with its topics and services. An
     exception from a step is logged (throttled) and the loop goes on.
     """
 
@@ -36,10 +37,10 @@ class StepLoop(DeadlineLoop):
         return Pacer(self.node.world.interval_sim_s, self.speedup, time.monotonic())
 
     def _step(self):
-        """One step; False once quit_time is reached (ROS is then shut down)."""
+        """One step; False once quit_time is reached (the loop ends, the node stays)."""
         now_s = self.node.step()
         if self._quit_s is not None and now_s is not None and now_s >= self._quit_s - 1e-9:
-            rospy.loginfo('stageros: quit_time %g s reached', self._quit_s)
-            rospy.signal_shutdown('quit_time reached')
+            rospy.loginfo('stageros: quit_time %g s reached: the world stops here, the node '
+                          'stays up (as stageros)', self._quit_s)
             return False
         return True

@@ -33,9 +33,50 @@ def string_bytes(text):
 
 
 def yaw_quaternion(yaw):
-    """(x, y, z, w) of a rotation by yaw about z."""
-    half = 0.5 * yaw
-    return 0.0, 0.0, math.sin(half), math.cos(half)
+    """(x, y, z, w) of a rotation by yaw about z as tf's Quaternion::setRPY(0, 0, yaw) makes
+    it (stageros's odom: createQuaternionMsgFromYaw), signed zeros included."""
+    half = yaw * 0.5
+    cy, sy = math.cos(half), math.sin(half)
+    cp = cr = 1.0    # cos(0 * 0.5)
+    sp = sr = 0.0    # sin(0 * 0.5)
+    return (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
+
+
+def transform_quaternion(yaw):
+    """yaw_quaternion(yaw) after a trip through a tf::Transform, as stageros's ground truth
+    and its transforms are sent: Matrix3x3::setRotation, then getRotation (Bullet's
+    algorithm; it gives -q for yaws between -180 and -120 degrees, and may change the last
+    bit)."""
+    x, y, z, w = yaw_quaternion(yaw)
+    s = 2.0 / (x * x + y * y + z * z + w * w)
+    xs, ys, zs = x * s, y * s, z * s
+    wx, wy, wz = w * xs, w * ys, w * zs
+    xx, xy, xz = x * xs, x * ys, x * zs
+    yy, yz, zz = y * ys, y * zs, z * zs
+    m = ((1.0 - (yy + zz), xy - wz, xz + wy),
+         (xy + wz, 1.0 - (xx + zz), yz - wx),
+         (xz - wy, yz + wx, 1.0 - (xx + yy)))
+    trace = m[0][0] + m[1][1] + m[2][2]
+    q = [0.0, 0.0, 0.0, 0.0]
+    if trace > 0.0:
+        r = math.sqrt(trace + 1.0)
+        q[3] = r * 0.5
+        r = 0.5 / r
+        q[0] = (m[2][1] - m[1][2]) * r
+        q[1] = (m[0][2] - m[2][0]) * r
+        q[2] = (m[1][0] - m[0][1]) * r
+    else:
+        i = (2 if m[1][1] < m[2][2] else 1) if m[0][0] < m[1][1] else \
+            (2 if m[0][0] < m[2][2] else 0)
+        j, k = (i + 1) % 3, (i + 2) % 3
+        r = math.sqrt(m[i][i] - m[j][j] - m[k][k] + 1.0)
+        q[i] = r * 0.5
+        r = 0.5 / r
+        q[3] = (m[k][j] - m[j][k]) * r
+        q[j] = (m[j][i] + m[i][j]) * r
+        q[k] = (m[k][i] + m[i][k]) * r
+    return tuple(q)
 
 
 def _frame(body_parts):
@@ -48,15 +89,18 @@ def clock_frame(secs, nsecs):
     return _CLOCK.pack(8, secs, nsecs)
 
 
-def odometry_frame(seq, secs, nsecs, frame_id, child_frame_id, pose, twist):
-    """nav_msgs/Odometry; frame ids as string_bytes(); pose (x, y, yaw), twist (vx, vy, wz).
+def odometry_frame(seq, secs, nsecs, frame_id, child_frame_id, pose, twist,
+                   quaternion=yaw_quaternion):
+    """nav_msgs/Odometry; frame ids as string_bytes(); pose (x, y, yaw), twist (vx, vy, wz);
+    quaternion: how stageros makes the orientation (odom: yaw_quaternion, ground truth:
+    transform_quaternion).
 
     z, roll and pitch are 0 and both covariances are zero, as stageros fills them.
     """
     x, y, yaw = pose
     vx, vy, wz = twist
     return _frame((_STAMP.pack(seq, secs, nsecs), frame_id, child_frame_id,
-                   _POSE.pack(x, y, 0.0, *yaw_quaternion(yaw)), _ZERO_COVARIANCE,
+                   _POSE.pack(x, y, 0.0, *quaternion(yaw)), _ZERO_COVARIANCE,
                    _TWIST.pack(vx, vy, 0.0, 0.0, 0.0, wz), _ZERO_COVARIANCE))
 
 
@@ -80,9 +124,10 @@ class ScanTemplate:
 
 
 def transform_bytes(secs, nsecs, parent, child, x, y, z, yaw):
-    """One geometry_msgs/TransformStamped (seq 0, as tf's broadcaster leaves it)."""
+    """One geometry_msgs/TransformStamped (seq 0, as tf's broadcaster leaves it); the
+    rotation as stageros's tf::Transform gives it back (transform_quaternion)."""
     return b''.join((_STAMP.pack(0, secs, nsecs), parent, child,
-                     _TRANSFORM.pack(x, y, z, *yaw_quaternion(yaw))))
+                     _TRANSFORM.pack(x, y, z, *transform_quaternion(yaw))))
 
 
 def tf_frame(transforms):

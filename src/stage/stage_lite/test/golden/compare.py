@@ -154,6 +154,13 @@ def compare(path_a, path_b, worst=WORST):
              for path, m in ((path_a, meta_a), (path_b, meta_b))]
     if meta_a['world_sha1'] != meta_b['world_sha1']:
         lines.append('WARNING: the world files differ (sha1)')
+    # a command reaches a stageros when its subscriber has connected: with many robots real
+    # Stage may take it steps later, and then poses differ for that reason alone
+    steps_a = [x.get('clock_step') for x in meta_a.get('actions_done', [])]
+    steps_b = [x.get('clock_step') for x in meta_b.get('actions_done', [])]
+    if steps_a != steps_b:
+        lines.append('WARNING: the script ran at other steps (real %s, ours %s): differences'
+                     ' may come from the inputs alone' % (steps_a, steps_b))
     common, ia, ib = np.intersect1d(a['steps'], b['steps'], return_indices=True)
     lines.append('steps in common: %s (%d); real %d..%d, ours %d..%d' % (
         spans(set(common.tolist())) or 'none', len(common), a['steps'][0], a['steps'][-1],

@@ -72,6 +72,30 @@ def test_tf_message_holds_every_transform():
     assert msg.transforms[0].header.stamp.secs == 2
 
 
+@pytest.mark.parametrize('degrees, flipped', [(0, False), (30, False), (-100, False),
+                                              (-119, False), (-121, True), (-170, True),
+                                              (170, False)])
+def test_transform_quaternion_is_tfs_round_trip(degrees, flipped):
+    # stageros sends ground truth and tf rotations through a tf::Transform: the same
+    # rotation, as -q for yaws between -180 and -120 degrees (Bullet's getRotation)
+    yaw = math.radians(degrees)
+    q = wire.yaw_quaternion(yaw)
+    t = wire.transform_quaternion(yaw)
+    assert (q[0], q[1]) == (0.0, 0.0) and (t[0], t[1]) == (0.0, 0.0)
+    sign = -1.0 if flipped else 1.0
+    assert (t[2], t[3]) == pytest.approx((sign * q[2], sign * q[3]), abs=1e-15)
+    assert 2 * math.atan2(t[2], t[3]) == pytest.approx(yaw + (2 * math.pi if flipped else 0.0),
+                                                       abs=1e-12)
+
+
+def test_ground_truth_orientation_through_the_transform():
+    s = wire.string_bytes
+    frame = wire.odometry_frame(1, 0, 0, s('/robot_0/odom'), s(''), (0.0, 0.0, math.radians(-150)),
+                                (0.0, 0.0, 0.0), wire.transform_quaternion)
+    q = Odometry().deserialize(_body(frame)).pose.pose.orientation
+    assert q.w < 0 and (q.z, q.w) == wire.transform_quaternion(math.radians(-150))[2:]
+
+
 def test_occupancy_grid_rows_start_at_the_lowest_y():
     grid = np.zeros((4, 6), bool)
     grid[0, 5] = True          # lowest row, last column

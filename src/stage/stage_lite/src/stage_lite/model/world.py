@@ -74,7 +74,9 @@ class RangerView:
         return math.inf if self.fov_rad > 0 else math.nan
 
     def local_angles(self):
-        return self.angle_min + np.arange(self.samples) * self.angle_increment
+        """The beams' angles in the sensor's frame (a one-beam sensor's: angle_min)."""
+        step = self.fov_rad / (self.samples - 1) if self.samples > 1 else 0.0
+        return self.angle_min + np.arange(self.samples) * step
 
 
 class Robot:
