@@ -23,13 +23,15 @@ usage() {
 usage: ./ws COMMAND [ARGS]
   demo [ARGS]        deps, build, then the demos: the convoy with its autopilot leader (ARGS go
                      to it), then the synchronisation lesson on Stage (build/demo/stage/)
-  test               deps, build, lint, unit tests, integration tests, one summary line
+  test               deps, build, lint, unit tests, then the integration and multi-host tests
+                     side by side (WS_TEST_JOBS at a time, 2), one summary line
   deps               install the missing Debian packages of tools/debian-packages.txt
   build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
                      runs every unit test and rostest the catkin way, see src/course_pytest)
   lint               catkin_lint, unit tests registered with catkin, ruff, hadolint, actionlint
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
-  integration [F..]  rostest every test/*.test of every package (or just the files F)
+  integration [F..]  rostest every test/*.test of every package (or just the files F),
+                     WS_TEST_JOBS at a time
   multihost [ARGS]   the multi-host tests (test/hosts/, pytest; root and ip netns, else skipped)
   bench [NAME..]     run the benchmarks under bench/ (all, or bench/NAME.py)
   shell              a bash with the workspace sourced, for running things by hand
