@@ -15,19 +15,23 @@ BUILD_DIR=${WS_BUILD_DIR:-build}
 DEVEL_DIR=${WS_DEVEL_DIR:-devel}
 RESULTS_DIR="$ROOT/$BUILD_DIR/ws-results"
 LINT_VENV="$ROOT/$BUILD_DIR/lint-venv"
+# How many rostest files (and the multi-host tests) ./ws test runs side by side.
+TEST_JOBS=${WS_TEST_JOBS:-2}
 
 usage() {
   cat <<EOF
 usage: ./ws COMMAND [ARGS]
   demo [ARGS]        deps, build, then the demos: the convoy with its autopilot leader (ARGS go
                      to it), then the synchronisation lesson on Stage (build/demo/stage/)
-  test               deps, build, lint, unit tests, integration tests, one summary line
+  test               deps, build, lint, unit tests, then the integration and multi-host tests
+                     side by side (WS_TEST_JOBS at a time, 2), one summary line
   deps               install the missing Debian packages of tools/debian-packages.txt
   build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
                      runs every unit test and rostest the catkin way, see src/course_pytest)
   lint               catkin_lint, unit tests registered with catkin, ruff, hadolint, actionlint
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
-  integration [F..]  rostest every test/*.test of every package (or just the files F)
+  integration [F..]  rostest every test/*.test of every package (or just the files F),
+                     WS_TEST_JOBS at a time
   multihost [ARGS]   the multi-host tests (test/hosts/, pytest; root and ip netns, else skipped)
   bench [NAME..] [OPTIONS]
                      run the benchmarks under bench/ (all, or bench/NAME.py); options
@@ -143,23 +147,80 @@ cmd_unit() {
 }
 
 cmd_integration() {
-  source_devel
-  local_ros_network
-  # install_space.test installs from this build directory.
-  export WS_BUILD_PATH="$ROOT/$BUILD_DIR"
   local files=("$@")
   ((${#files[@]})) || mapfile -t files < <(integration_files)
-  local failed=0 f dir
-  for f in "${files[@]}"; do
-    dir=$(integration_results_dir "$f")
-    echo "integration: ${dir#"$RESULTS_DIR/"}"
-    rm -rf "$dir" && mkdir -p "$dir"
-    # rostest limits each test node itself (time-limit); the outer timeout catches a hung launch.
-    timeout --kill-after=10 600 rostest --results-base-dir="$dir" \
-      "$(package_of "$f")" "$(basename "$f")" >"$dir/rostest.log" 2>&1 \
-      || { failed=1; tail -n 30 "$dir/rostest.log"; }
+  run_test_jobs "${files[@]}"
+}
+
+# One .test file: rostest starts a master of its own on a free port, so files running side by
+# side never share a master; its results and log stay in the file's own directory.
+run_rostest_file() {
+  local f=$1 dir
+  dir=$(integration_results_dir "$f")
+  rm -rf "$dir" && mkdir -p "$dir"
+  # rostest limits each test node itself (time-limit); the outer timeout catches a hung launch
+  # (it signals its own process group: the launch and everything the test started).
+  timeout --kill-after=10 600 rostest --results-base-dir="$dir" \
+    "$(package_of "$f")" "$(basename "$f")" >"$dir/rostest.log" 2>&1
+}
+
+# A job of the test steps that run side by side: a .test file, or `multihost` (the multi-host
+# tests, their output in build/ws-results/multihost.log).
+run_test_job() {
+  case $1 in
+    multihost) cmd_multihost >"$RESULTS_DIR/multihost.log" 2>&1 ;;
+    *) run_rostest_file "$1" ;;
+  esac
+}
+
+test_job_log() {
+  case $1 in
+    multihost) echo "$RESULTS_DIR/multihost.log" ;;
+    *) echo "$(integration_results_dir "$1")/rostest.log" ;;
+  esac
+}
+
+test_job_label() {
+  case $1 in
+    multihost) echo "multihost:" ;;
+    *) echo "integration: $(package_of "$1")/$(basename "$1" .test)" ;;
+  esac
+}
+
+# Runs the jobs TEST_JOBS at a time, in the order given, each in the background with its output
+# in its log; prints one line per job as it ends (the log's tail if it failed). Most of a
+# rostest's time is spent waiting on its nodes, so two share two cores well. Non-zero if any
+# job failed.
+run_test_jobs() {
+  source_devel
+  local_ros_network
+  mkdir -p "$RESULTS_DIR"
+  # install_space.test installs from this build directory.
+  export WS_BUILD_PATH="$ROOT/$BUILD_DIR"
+  local -A running=() started=()
+  local job pid failed=0
+  for job in "$@"; do
+    while ((${#running[@]} >= TEST_JOBS)); do end_test_job || failed=1; done
+    run_test_job "$job" &
+    running[$!]=$job started[$!]=$SECONDS
   done
+  while ((${#running[@]})); do end_test_job || failed=1; done
   return $failed
+}
+
+# Waits for one job of run_test_jobs (its `running` and `started`) to end and reports it.
+end_test_job() {
+  local pid status=0
+  wait -n -p pid "${!running[@]}" || status=$?
+  local job=${running[$pid]} took=$((SECONDS - started[$pid]))
+  unset "running[$pid]" "started[$pid]"
+  if ((status == 0)); then
+    echo "$(test_job_label "$job") ok (${took} s)"
+    return 0
+  fi
+  echo "$(test_job_label "$job") FAILED (exit $status, ${took} s); the end of $(test_job_log "$job"):"
+  tail -n 30 "$(test_job_log "$job")"
+  return 1
 }
 
 # The lessons across hosts (network namespaces): pytest, as they run one master per test, on
@@ -193,10 +254,12 @@ cmd_test() {
   local lint_ok=1
   cmd_lint || lint_ok=0
   cmd_unit || true
-  cmd_integration || true
-  cmd_multihost || true
+  # The multi-host tests first: the longest job, run beside the .test files.
+  local files
+  mapfile -t files < <(integration_files)
+  run_test_jobs multihost "${files[@]}" || true
   local expected=(--junit "$RESULTS_DIR/unit.xml" --junit "$RESULTS_DIR/multihost.xml") f
-  for f in $(integration_files); do
+  for f in "${files[@]}"; do
     expected+=(--rostest "$(integration_results_dir "$f")")
   done
   ((lint_ok)) || expected+=(--failed-step lint)

@@ -6,9 +6,11 @@ node (the real test cases) and a rostest-*.xml that wraps each <test> node in a 
 failing only when the node itself failed (crashed, timed out, wrote no results). So a .test
 file counts its rosunit cases, plus the wrapper's failures. Anything expected but missing, and
 a failed non-test step (lint), count as failures, so a broken run can never look green.
+The closing line names the system it ran on (from /etc/os-release), so a CI log says which.
 """
 import argparse
 import pathlib
+import shlex
 import sys
 import xml.etree.ElementTree as ET
 
@@ -61,6 +63,19 @@ def count_rostest_dir(tally, directory, label):
         tally.fail('%s: no test results (see %s)' % (label, directory / 'rostest.log'))
 
 
+def system_name(path=pathlib.Path('/etc/os-release')):
+    """'Debian 13 trixie': the first word of os-release's NAME, VERSION_ID, VERSION_CODENAME
+    (those it has: Debian testing has no VERSION_ID); 'unknown system' without the file."""
+    try:
+        text = path.read_text(encoding='utf-8')
+    except OSError:
+        return 'unknown system'
+    fields = dict(line.split('=', 1) for line in shlex.split(text, comments=True) if '=' in line)
+    parts = [fields.get('NAME', '').split(' ')[0], fields.get('VERSION_ID', ''),
+             fields.get('VERSION_CODENAME', '')]
+    return ' '.join(p for p in parts if p) or 'unknown system'
+
+
 def report(label, before, after):
     """One line per result source: what it added to the tally."""
     passed, failed, skipped = (now - then for now, then in zip(after, before, strict=True))
@@ -102,7 +117,8 @@ def main():
         tally.fail('no test ran')
         print('FAILED no test ran')
     line = '%d passed, %d failed' % (tally.passed, tally.failed)
-    print(line + (', %d skipped' % tally.skipped if tally.skipped else ''))
+    line += ', %d skipped' % tally.skipped if tally.skipped else ''
+    print('%s (%s)' % (line, system_name()))
     return 1 if tally.failed else 0
 
 

@@ -43,6 +43,12 @@ MOVED_M = 0.1  # five steps at 0.2 m/s: the robot is driving, not jittering
 SETTLE_STEPS = 10
 STEP_NS = 100_000_000  # the world's interval_sim, 100 ms
 STAGEROS = ['rosrun', 'stage_ros', 'stageros']
+# Stage's pace in the tests that need only the lesson's outcome (where each robot stops, what
+# it logs, GO), not its pace: 4 x real time keeps the suite short. The robots' 10 Hz ticks on
+# sim time still come twice per watchdog period (0.2 s of sim time), and the margins of the
+# checks (0.5 m bumper, 1 m gap) leave a lagging robot 0.6 s of wall time; stage_stall and
+# stage_multi, which watch Stage stall commanded robots, run at the lesson's real time.
+OUTCOME_SPEEDUP = 4.0
 # A rosout line in a node's rospy log file: "[rosout][INFO] <date> <time>: text".
 LOG_FILE_LINE = re.compile(r'^\[rosout\]\[(\w+)\] \S+ \S+: (.*)$')
 
@@ -54,8 +60,10 @@ def lesson_world():
 
 
 def start_stageros(stop_timeout_s=None):
-    """`rosrun stage_ros stageros -g <the lesson's world>`, running (a ChildProcess: stop())."""
-    return spawn([*STAGEROS, '-g', lesson_world()], stop_timeout_s=stop_timeout_s)
+    """`rosrun stage_ros stageros -g <the lesson's world>` at OUTCOME_SPEEDUP x real time,
+    running (a ChildProcess: stop())."""
+    return spawn([*STAGEROS, '-g', lesson_world(), '_speedup:=%s' % OUTCOME_SPEEDUP],
+                 stop_timeout_s=stop_timeout_s)
 
 
 def pose_of(odometry):

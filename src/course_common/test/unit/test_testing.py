@@ -1,5 +1,6 @@
 """Unit tests of course_common.testing's pure helpers: results_dir, number checks, INFO lines,
-ScratchDirTestCase, free_port, Xvfb's display number (and one real Xvfb, when installed)."""
+ScratchDirTestCase, free_port, Xvfb's display number (and one real Xvfb, when installed), stamps,
+LogRecorder's copies of a latched line."""
 import os
 import re
 import shutil
@@ -14,13 +15,14 @@ from course_common.testing import (
     consecutive,
     info_texts,
     numbers_in,
+    recorders,
     results_dir,
 )
-from course_common.testing.recorders import stamp_ns
+from course_common.testing.recorders import LogRecorder, stamp_ns
 from course_common.xvfb import Xvfb, display_number
 from genpy import Time
 from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock
+from rosgraph_msgs.msg import Clock, Log
 
 COUNT = re.compile(r'^hello world (\d+)$')
 TIME = re.compile(r'^hello world (\d+\.\d+)$')
@@ -133,3 +135,26 @@ def test_stamp_ns_of_a_header_and_of_a_clock_is_exact():
     odom.header.stamp = Time(12, 300000000)  # Stage's step 123: a whole 100 ms
     assert stamp_ns(odom) == 12_300_000_000
     assert stamp_ns(Clock(clock=Time(0, 100000000))) == 100_000_000
+
+
+def _line(node, seq, secs, text):
+    line = Log(name=node, msg=text)
+    line.header.seq, line.header.stamp = seq, Time(secs, 0)
+    return line
+
+
+def test_log_recorder_keeps_a_line_once(monkeypatch):
+    # No master: the recorder is fed as its subscriber would feed it.
+    monkeypatch.setattr(recorders.rospy, 'Subscriber', lambda *args, **kwargs: None)
+    log = LogRecorder(connect=False)
+    for line in (_line('/talker', 1, 5, 'hello world 0'),
+                 _line('/talker', 1, 5, 'hello world 0'),  # the latched line, a 2nd connection
+                 _line('/talker', 2, 5, 'hello world 0'),  # said again: a new line
+                 _line('/other', 1, 5, 'hello world 0'),
+                 _line('/talker', 1, 9, 'hello world 0')):  # restarted under the same name
+        log._cb(line)
+    assert log.lines(node='/talker') == ['hello world 0'] * 3
+    assert log.lines(node='/other') == ['hello world 0']
+    log.clear()
+    log._cb(_line('/talker', 2, 5, 'hello world 0'))
+    assert log.lines() == []

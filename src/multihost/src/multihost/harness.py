@@ -27,17 +27,23 @@ class Team:
         self.log_dir = str(log_dir)
         self.procs = {}
         self.started_at = {}  # name: wall time just before its start (nothing of it is older)
-        os.makedirs(self.log_dir, exist_ok=True)
+        # ROS_HOME made here, before any process: roscore and the probe start together, and
+        # roslaunch's pid file code fails (FileExistsError) if another makes it between its
+        # exists() and its makedirs() (a loaded run saw roscore die so, the probe waiting 60 s).
+        os.makedirs(self.ros_home(), exist_ok=True)
         atexit.register(self.close)
 
     def env(self, i, extra=None):
         """The environment of a process on host i, as changes to this process's (a value None
         removes a variable): what hosts.host_env gives, ROS_HOME in the log folder, extra."""
         env = hosts_mod.host_env(i)
-        env['ROS_HOME'] = os.path.join(self.log_dir, 'ros_home')
+        env['ROS_HOME'] = self.ros_home()
         env['PYTHONUNBUFFERED'] = '1'
         env.update(extra or {})
         return {**{k: None for k in os.environ if k not in env}, **env}
+
+    def ros_home(self):
+        return os.path.join(self.log_dir, 'ros_home')
 
     def start(self, name, i, command, extra_env=None, on_line=None):
         """Start command (argv list) on host i as `name`; env values None unset a variable.

@@ -101,14 +101,28 @@ class LogRecorder(Recorder):
     Construct it after the nodes of interest are up: it waits until it is connected to every
     node that publishes /rosout (connect=False: not), so their later lines cannot be missed.
     node: the node whose lines records(), lines() and the waits look at (None: every node).
+    A line is kept once: rospy latches /rosout, so each new connection to a node re-sends its
+    last line, and two connections can race as a node starts (the newer replaces the older,
+    after both delivered that line); the copy has the same node, seq and stamp.
     """
 
     def __init__(self, node=None, accept=None, connect=True):
         self.node = node
+        # (node, header.seq, header.stamp) of every line kept, clear() or not: a copy that
+        # comes later is never a new line
+        self._heard = set()
         super().__init__('/rosout', Log, queue_size=1000, accept=accept)
         if connect:
             wait_for(lambda: self.sub.get_num_connections() >= len(publishers_of('/rosout')),
                      START_DEADLINE_S, 'connections to every /rosout publisher')
+
+    def _cb(self, msg):
+        key = (msg.name, msg.header.seq, stamp_ns(msg))
+        with self._lock:
+            if key in self._heard:
+                return
+            self._heard.add(key)
+        super()._cb(msg)
 
     def records(self, level=None, node=None):
         """The Log messages of the node (of `node` if given), at `level` if given."""

@@ -13,8 +13,12 @@ MIN_BACKGROUND_RUN = 100  # px of background in a row/column of the 3D view: no 
 COLOUR_TOLERANCE = 40  # per channel, 0..255: rviz shades and blends what it draws
 MIN_ARENA_PIXELS = 300  # the outline is ~4 x 600 px long, a few px wide
 MIN_ROBOT_PIXELS = 30  # one arrow is ~45 x 8 px
-WHITE_MIN = 240  # text is drawn white, anti-aliased: its core is near 255
-MIN_TEXT_PIXELS = 30  # a name like "robot2" at 0.35 m is ~60 core pixels
+# Text is drawn white, anti-aliased, in rviz's Liberation Sans: bookworm's (1.07) core is near
+# 255, trixie's (2.1) is thinner and greyer (a third as many pixels reach 240). From 200 up a
+# name like "robot_2" at 0.35 m is ~120 px on bookworm and ~100 on trixie; nothing else in the
+# view is that light (the grid is ~70).
+WHITE_MIN = 200
+MIN_TEXT_PIXELS = 30
 #: Log lines that are not errors of the file or the lesson: Debian's rviz asks rospack for
 #: OGRE media of the `media_export` package, which Debian does not ship (nothing uses them);
 #: Mesa's GLSL linker rejects the Map display's palette shader as it is first used ("active

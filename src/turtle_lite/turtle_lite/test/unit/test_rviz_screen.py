@@ -20,7 +20,7 @@ def _rgb255(rgb):
     return tuple(round(255 * c) for c in rgb)
 
 
-def screen(robots=0, text_px=0, arena=True, white_panel=True):
+def screen(robots=0, text_px=0, arena=True, white_panel=True, text_grey=255):
     """A 400 x 600 screenshot: a white panel on the left, the 3D view (background) right."""
     img = np.zeros((400, 600, 3), dtype=np.uint8)
     img[:, :] = WIDGET_GREY
@@ -32,7 +32,7 @@ def screen(robots=0, text_px=0, arena=True, white_panel=True):
     for i in range(robots):
         img[100 + 20 * i:105 + 20 * i, 300:310] = _rgb255(PALETTE[i])  # 50 px each
     if text_px:
-        img[300, 220:220 + text_px] = (255, 255, 255)
+        img[300, 220:220 + text_px] = (text_grey,) * 3
     return img
 
 
@@ -79,6 +79,9 @@ def test_colour_pixels(rgb, tolerance, expected):
     ({'robots': 3, 'text_px': 3 * MIN_TEXT_PIXELS}, 4, 3, False),   # a robot missing
     ({'robots': 3, 'text_px': 2 * MIN_TEXT_PIXELS}, 3, 3, False),   # a name missing
     ({'robots': 3, 'text_px': 0}, 3, 0, True),
+    # trixie's rviz draws text greyer than bookworm's; a dim grey (the grid's) is not text.
+    ({'robots': 3, 'text_px': 3 * MIN_TEXT_PIXELS, 'text_grey': 225}, 3, 3, True),
+    ({'robots': 3, 'text_px': 3 * MIN_TEXT_PIXELS, 'text_grey': 100}, 3, 3, False),
     ({'robots': 3, 'text_px': 90, 'arena': False}, 3, 3, False),    # no arena yet
     ({'robots': 0, 'text_px': 0}, 0, 0, True),
     # The white panel outside the view does not count as text.
