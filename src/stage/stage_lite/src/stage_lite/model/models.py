@@ -20,7 +20,7 @@ import os
 import numpy as np
 
 from . import image
-from .pose import global_to_local, pose_add, stage_normalize
+from .pose import pose_add, stage_normalize
 from .worldfile import WorldError
 
 DEFAULT_SIZE = (0.4, 0.4, 1.0)        # Stage's Size()
@@ -496,4 +496,4 @@ def new_model(world_dir, parent, kind, index, entity, counts):
 
 
 __all__ = ['Model', 'Position', 'Ranger', 'Sensor', 'Block', 'new_model', 'calc_size',
-           'global_to_local', 'BUILTIN_TYPES', 'SIMULATED_TYPES']
+           'BUILTIN_TYPES', 'SIMULATED_TYPES']

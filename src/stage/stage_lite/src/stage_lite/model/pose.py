@@ -30,13 +30,3 @@ def pose_add(p, q):
     sina = math.sin(pa)
     return (px + qx * cosa - qy * sina, py + qx * sina + qy * cosa, pz + qz,
             stage_normalize(pa + qa))
-
-
-def global_to_local(origin, pose):
-    """Stage's Model::GlobalToLocal: a world pose in the frame of `origin` (both x, y, z, a)."""
-    ox, oy, oz, oa = origin
-    x, y, z, a = pose
-    cosa = math.cos(oa)
-    sina = math.sin(oa)
-    return ((x - ox) * cosa + (y - oy) * sina, -(x - ox) * sina + (y - oy) * cosa, z - oz,
-            a - oa)

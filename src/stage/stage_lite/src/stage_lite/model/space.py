@@ -200,15 +200,6 @@ class Space:
         self.seq += 1
         return self.seq
 
-    def collides(self, blocks, layer):
-        """Block::TestCollision of these blocks as drawn in `layer`: grid.NO_HIT, STATIC,
-        GROUND or the moving model hit."""
-        return grid.collides(blocks, layer, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
-                             self.rx0, self.ry0, self.nrx, self.nry, self.reg_static,
-                             self.reg_dyn, self.st_coll, self.blk_class, self.dyn_head,
-                             self.ent_block, self.ent_next, self.blk_model, self.blk_zmin,
-                             self.blk_zmax, self.model_root, self.model_obstacle)
-
     # ---- rays ------------------------------------------------------------------------------
     def cast(self, origins, incr, offsets, sensor, rmax, ray_class, root, layer):
         """The rays of sensors (per sensor: its first ray's pose x, y, z, angle, its angle

@@ -120,11 +120,6 @@ class Robot:
         """The velocity Stage applies (odom's twist): vx, vy, wz."""
         return (self.velocity[0], self.velocity[1], self.velocity[3])
 
-    @property
-    def z_range(self):
-        z = self.model.global_pose()[2] + self.origin[2]
-        return (z, z + self.size[2])
-
 
 class World:
     """A loaded world. Use load_world()."""
