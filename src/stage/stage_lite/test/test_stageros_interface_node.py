@@ -133,34 +133,40 @@ class StagerosInterfaceTest(StageTestCase):
         self.assertEqual(set(scan.intensities), {1.0}, 'every beam meets a wall')
 
     def test_watchdog_stops_the_robot_three_steps_after_the_last_command(self):
+        truth = Recorder('/robot_2/base_pose_ground_truth', Odometry, keep=1)
+        start_x = _xy(truth.wait_first())[0]
         rec = Recorder('/robot_2/odom', Odometry)
-        pub = rospy.Publisher('/robot_2/cmd_vel', Twist, queue_size=10)
-        wait_connected(pub, 'robot_2/cmd_vel')
         rec.wait_first()
-        rec.clear()
-        pub.publish(Twist(linear=Vector3(0.1, 0, 0)))
-        moving = rec.wait_where(lambda m: m.twist.twist.linear.x > 0, 'the commanded twist')
-        stopped = rec.wait_where(lambda m: stamp_ns(m) > stamp_ns(moving)
-                                 and m.twist.twist.linear.x == 0, 'the twist back to 0')
+        self.assertEqual(rec.latest().twist.twist.linear.x, 0.0, 'robot_2 at rest before')
+        moving, stopped = self._one_command('/robot_2/cmd_vel', rec,
+                                            Twist(linear=Vector3(0.1, 0, 0)),
+                                            lambda m: m.twist.twist.linear.x)
         self.assertAlmostEqual(moving.twist.twist.linear.x, 0.1, delta=1e-9)
-        self.assertEqual(stamp_ns(stopped) - stamp_ns(moving), 2 * STEP_NS)
+        # Received at step T: it moves at T+1 and T+2, the watchdog (0.2 s) stops it at T+3.
+        # Exact whatever frames a loaded subscriber missed: two steps of 0.1 m/s, 0.02 m.
+        at_rest = wait_for(lambda: truth.latest() if stamp_ns(truth.latest())
+                           >= stamp_ns(stopped) else None, EVENT_DEADLINE_S,
+                           'the ground truth of the stop')
+        self.assertAlmostEqual(_xy(at_rest)[0] - start_x, 2 * 0.1 * STEP_NS / 1e9, delta=1e-9)
+        late = [m for m in rec.messages() if stamp_ns(m) >= stamp_ns(moving) + 2 * STEP_NS
+                and m.twist.twist.linear.x != 0]
+        self.assertEqual(late, [], 'moving two steps after the first moving step')
+        truth.close()
+        rec.close()
         self._reset()
 
     def test_reset_positions_puts_every_robot_back(self):
-        pub = rospy.Publisher('/robot_3/cmd_vel', Twist, queue_size=10)
-        wait_connected(pub, 'robot_3/cmd_vel')
         rec = Recorder('/robot_3/base_pose_ground_truth', Odometry, keep=1)
-        odom = Recorder('/robot_3/odom', Odometry, keep=1)
+        odom = Recorder('/robot_3/odom', Odometry)
         rec.wait_first()
-
-        def moved():
-            pub.publish(Twist(angular=Vector3(0, 0, 0.5)))
-            return abs(rec.latest().pose.pose.orientation.z) > 0.05
-        wait_for(moved, EVENT_DEADLINE_S, 'robot_3 to turn')
-        # As in Stage, reset_positions moves the robots back and leaves their velocity: wait
-        # for the watchdog to stop robot_3 first, so that it stays where it is put.
-        wait_for(lambda: odom.latest().twist.twist.angular.z == 0, EVENT_DEADLINE_S,
-                 'the watchdog to stop robot_3')
+        odom.wait_first()
+        _, stopped = self._one_command('/robot_3/cmd_vel', odom, Twist(angular=Vector3(0, 0, 0.5)),
+                                       lambda m: m.twist.twist.angular.z)
+        turned = wait_for(lambda: rec.latest() if stamp_ns(rec.latest()) >= stamp_ns(stopped)
+                          else None, EVENT_DEADLINE_S, 'the ground truth of the stop')
+        self.assertGreater(abs(turned.pose.pose.orientation.z), 0.04, 'robot_3 turned 0.1 rad')
+        # As in Stage, reset_positions moves the robots back and leaves their velocity: robot_3
+        # is at rest (the watchdog stopped it, and no command is on its way), so it stays put.
         self._reset()
         wait_for(lambda: abs(rec.latest().pose.pose.orientation.z) < POSE_TOL_M
                  and math.dist(_xy(rec.latest()), STARTS[3]) < POSE_TOL_M, EVENT_DEADLINE_S,
@@ -188,6 +194,21 @@ class StagerosInterfaceTest(StageTestCase):
         self.assertAlmostEqual(y, STARTS[1][1], delta=POSE_TOL_M)
         logs.close()
         rec.close()
+
+    @staticmethod
+    def _one_command(topic, odom, twist, speed):
+        """Publishes one command on topic; returns the first odom message (of `odom`, a
+        Recorder) that moves with it and the first one after it at rest (the watchdog's
+        stop). Once the stop is seen, nothing of this command is still on its way."""
+        pub = rospy.Publisher(topic, Twist, queue_size=1)
+        wait_connected(pub, topic)
+        odom.clear()
+        pub.publish(twist)
+        moving = odom.wait_where(lambda m: speed(m) != 0, 'the commanded twist')
+        stopped = odom.wait_where(lambda m: stamp_ns(m) > stamp_ns(moving) and speed(m) == 0,
+                                  'the watchdog stopping it')
+        pub.unregister()
+        return moving, stopped
 
     @staticmethod
     def _reset():
