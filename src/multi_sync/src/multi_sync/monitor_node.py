@@ -22,6 +22,13 @@ STATUS_QUEUE = 100
 # stamp would read 0), but no longer than this, in wall seconds (a robot that subscribes
 # later gets GO as it connects).
 CONNECT_WAIT_S = 3.0
+# GO goes out no sooner than this after the ready that completed the team (wall clock). That
+# ready went from its robot to every teammate over connections of its own, not the monitor's:
+# a GO sent at once can overtake it, and a robot whose queue holds one message (the lesson's
+# C++ robot: queue 1, spinOnce at 1 Hz) then reads the teammate's ready in place of GO and
+# waits forever. Half a second covers a loaded machine's delivery many times over and
+# is less than the lesson robot's own 1 s loop.
+READY_SETTLE_S = 0.5
 # How often a pending GO checks its conditions and the deadline above (wall clock).
 CHECK_PERIOD_S = 0.05
 
@@ -49,7 +56,9 @@ class MonitorNode:
             header.frame_id = "monitor", robot_id = -1, is_ready = true. It is sent once
             every ready robot has subscribed and, on sim time, the clock runs (at most
             CONNECT_WAIT_S after the last ready),
-            to every subscriber in one pass, and to each later subscriber as it connects:
+            no sooner than READY_SETTLE_S after the last ready (so that every teammate has
+            that ready before GO, whatever its queue size), to every subscriber in one pass,
+            and to each later subscriber as it connects:
             every subscriber gets exactly one GO (multi_sync.go_latch says why this is not
             rospy's latch). A ready report after GO is logged and not answered.
     Services: none.
@@ -61,6 +70,7 @@ class MonitorNode:
         self._latch = GoLatch()
         self._lock = threading.Lock()
         self._go_deadline = None  # set while GO waits for robots to subscribe
+        self._go_not_before = 0.0  # the last ready's arrival + READY_SETTLE_S (monotonic)
         # Synchronous: GO goes out to every robot from this thread in one pass.
         self._pub = unqueued_publisher('team_status', RobotStatus,
                                        subscriber_listener=_GoOnConnect(self._on_subscriber))
@@ -86,11 +96,13 @@ class MonitorNode:
             send(go)
 
     def _try_go(self, force=False):
-        """Publish the pending GO if every ready robot listens and the clock runs (or force);
-        log it. Returns False while GO is still pending."""
+        """Publish the pending GO once the last ready has settled, every ready robot listens
+        and the clock runs (or force); log it. Returns False while GO is still pending."""
         with self._lock:
             if self._go_deadline is None:
                 return True
+            if time.monotonic() < self._go_not_before:  # even when forced: never overtake
+                return False
             missing = self._book.unconnected(connection_ids(self._pub))
             # Zero only on sim time before the first /clock.
             no_clock = rospy.get_rostime().is_zero()
@@ -125,10 +137,12 @@ class MonitorNode:
         with self._lock:
             outcome = self._book.report(msg.robot_id, msg.is_ready, msg.header.frame_id, sender)
             if outcome is Outcome.TEAM_READY:
-                self._go_deadline = time.monotonic() + CONNECT_WAIT_S
+                now = time.monotonic()
+                self._go_not_before = now + READY_SETTLE_S
+                self._go_deadline = now + CONNECT_WAIT_S
         if outcome in (Outcome.NEW_READY, Outcome.TEAM_READY):
             rospy.loginfo('Robot %d is ready!', msg.robot_id)
-        if outcome is Outcome.TEAM_READY and not self._try_go():
+        if outcome is Outcome.TEAM_READY:
             threading.Thread(target=self._go_when_ready, name='go_when_ready',
                              daemon=True).start()
         elif outcome is Outcome.AFTER_GO:
