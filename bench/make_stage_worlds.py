@@ -23,9 +23,11 @@ import numpy as np
 from scipy.ndimage import distance_transform_edt
 from stage_lite.model.world import load_world
 
+from stage_multi import lesson_world
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-WORLD_DIR = os.path.join(HERE, '..', 'src', 'stage_multi', 'world')
-LESSON = os.path.join(WORLD_DIR, 'willow-multi-erratic.world')
+LESSON = lesson_world.world_path()
+WORLD_DIR = os.path.dirname(LESSON)
 CLEARANCE_M = 1.2       # from walls and between robot centres (the figure)
 CELL_M = 0.1            # candidate places on a 10 cm lattice
 SEED = 20140            # fixed: the same worlds on every machine

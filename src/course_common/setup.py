@@ -2,5 +2,6 @@
 from catkin_pkg.python_setup import generate_distutils_setup
 from setuptools import setup
 
-setup(**generate_distutils_setup(packages=['course_common', 'course_common.testing'],
+setup(**generate_distutils_setup(packages=['course_common', 'course_common.rviz',
+                                           'course_common.testing'],
                                  package_dir={'': 'src'}))

@@ -11,10 +11,10 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from course_common.rviz.screen import error_lines
+from course_common.rviz.snapshot import RvizOnXvfb
 from course_common.testing import results_dir, wait_for
 from course_common.testing.views import TfPoseCheck
-from turtle_lite.rviz_screen import error_lines
-from turtle_lite.rviz_snapshot import RvizOnXvfb
 from turtlesim.msg import Pose
 from visualization_msgs.msg import MarkerArray
 
@@ -48,7 +48,7 @@ class ConvoyViewsTest(unittest.TestCase):
         cls.gaps = msg
 
     def test_tf_has_world_to_every_robot_matching_its_pose(self):
-        check = TfPoseCheck({r: '/%s/pose' % r for r in ROBOTS})
+        check = TfPoseCheck({r: '/%s/pose' % r for r in ROBOTS}, Pose)
         self.addCleanup(check.close)
         # robot1 stands still: tf agrees at once; the followers agree when they stop (or
         # between two poses), and a wrong transform never agrees.

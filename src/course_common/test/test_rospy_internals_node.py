@@ -23,20 +23,20 @@ from course_common.rospy_internals import (
     write_frame,
 )
 from course_common.testing import pin, spawn, wait_for
+from geometry_msgs.msg import Pose2D as Pose
 from rosgraph_msgs.msg import Log
 from rospy.impl.tcpros_base import TCPROSTransport
 from rospy.impl.tcpros_pubsub import QueuedConnection
 from std_msgs.msg import String
-from turtlesim.msg import Pose
 
 from course_common import rospy_internals
 
 DEADLINE_S = 30.0  # connections between processes on a loaded 2-core machine
-# Values exact in float32, so a frame that arrives intact compares equal.
-POSE = (1.5, -2.25, 0.125, 3.0, -0.5)
-# One TCPROS frame of a turtlesim/Pose: 4-byte length, then five little-endian float32.
-POSE_FRAME = struct.Struct('<I5f')
-POSE_BYTES = 20
+# A frame that arrives intact compares equal.
+POSE = (1.5, -2.25, 0.125)
+# One TCPROS frame of a geometry_msgs/Pose2D: 4-byte length, then three little-endian float64.
+POSE_FRAME = struct.Struct('<I3d')
+POSE_BYTES = 24
 ECHO_NODES = {'/pinned_echo_a', '/pinned_echo_b'}
 # A subscriber in a process of its own, printing the sequence number that opens each
 # std_msgs/String it receives and whether the rest of the message is intact.
@@ -122,7 +122,7 @@ class RospyInternalsTest(unittest.TestCase):
             write_frame(pub, frame)
         wait_for(lambda: len(inbox.items()) >= 3, DEADLINE_S, 'the three frames written')
         for msg in inbox.items():
-            got = (msg.x, msg.y, msg.theta, msg.linear_velocity, msg.angular_velocity)
+            got = (msg.x, msg.y, msg.theta)
             pin(got == POSE, 'TCPROSTransport.socket', 'carries frames written to it intact '
                 '(sent %r, received %r)' % (POSE, got))
             pin(caller_id(msg) == rospy.get_name(), 'message._connection_header',

@@ -17,3 +17,14 @@ function(course_add_pytests dir)
     COMMAND "\"${CMAKE_COMMAND}\" -E make_directory ${_results}"
             "${PYTHON_EXECUTABLE} -B -m pytest -q -p no:cacheprovider --junitxml=${_results}/${_xml} ${_path}")
 endfunction()
+
+# course_add_rostests(DIR): every DIR/*.test (a package's test/) as a rostest of
+# `catkin_make run_tests`; a .test file added later is picked up at the next build.
+# Call it inside if(CATKIN_ENABLE_TESTING), after find_package(course_pytest REQUIRED).
+function(course_add_rostests dir)
+  find_package(rostest REQUIRED)
+  file(GLOB _tests RELATIVE "${PROJECT_SOURCE_DIR}" CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/${dir}/*.test")
+  foreach(_test ${_tests})
+    add_rostest(${_test})
+  endforeach()
+endfunction()

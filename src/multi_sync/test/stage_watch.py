@@ -13,7 +13,6 @@ import os
 import re
 import unittest
 
-import rospkg
 from course_common.angles import yaw_from_quaternion
 from course_common.processes import ROSPY_LINE
 from course_common.testing import spawn, wait_for
@@ -24,9 +23,10 @@ from nav_msgs.msg import Odometry
 from team_watch import NodeProcess
 
 from multi_sync.msg import RobotPosition, RobotStatus
+from stage_multi import lesson_world
 
 # The lesson's world (stage_multi): robot_N's start (x, y), all heading +x (yaw 0).
-LESSON_STARTS = ((-11.5, 23.5), (-13.5, 23.5), (-11.5, 21.5), (-13.5, 21.5))
+LESSON_STARTS = lesson_world.STARTS
 TEAM_SIZE = len(LESSON_STARTS)
 FRONT, BACK = (0, 2), (1, 3)
 AHEAD_OF = {1: 0, 3: 2}  # a back robot -> the teammate in front of it, in its lane
@@ -42,7 +42,6 @@ MOVED_M = 0.1  # five steps at 0.2 m/s: the robot is driving, not jittering
 # stalled for good rather than between two commands.
 SETTLE_STEPS = 10
 STEP_NS = 100_000_000  # the world's interval_sim, 100 ms
-STAGEROS = ['rosrun', 'stage_ros', 'stageros']
 # Stage's pace in the tests that need only the lesson's outcome (where each robot stops, what
 # it logs, GO), not its pace: 4 x real time keeps the suite short. The robots' 10 Hz ticks on
 # sim time still come twice per watchdog period (0.2 s of sim time), and the margins of the
@@ -53,16 +52,10 @@ OUTCOME_SPEEDUP = 4.0
 LOG_FILE_LINE = re.compile(r'^\[rosout\]\[(\w+)\] \S+ \S+: (.*)$')
 
 
-def lesson_world():
-    """The lesson's world file, as multi_sync.launch names it."""
-    return os.path.join(rospkg.RosPack().get_path('stage_multi'), 'world',
-                        'willow-multi-erratic.world')
-
-
 def start_stageros(stop_timeout_s=None):
     """`rosrun stage_ros stageros -g <the lesson's world>` at OUTCOME_SPEEDUP x real time,
     running (a ChildProcess: stop())."""
-    return spawn([*STAGEROS, '-g', lesson_world(), '_speedup:=%s' % OUTCOME_SPEEDUP],
+    return spawn(lesson_world.stageros_command('-g', '_speedup:=%s' % OUTCOME_SPEEDUP),
                  stop_timeout_s=stop_timeout_s)
 
 

@@ -99,10 +99,6 @@ class TeamWatch:
         with self.lock:
             return any(text == m and (node is None or node == name) for name, m in self.logs)
 
-    def log_count(self, text):
-        with self.lock:
-            return sum(1 for _, m in self.logs if m == text)
-
 
 class NodeProcess(ChildProcess):
     """`rosrun multi_sync ARGS`, started at once: course_common's ChildProcess (its lines()

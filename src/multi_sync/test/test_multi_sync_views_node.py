@@ -8,10 +8,11 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from course_common.rviz.screen import error_lines
+from course_common.rviz.snapshot import RvizOnXvfb
 from course_common.testing import results_dir
 from course_common.testing.views import TfPoseCheck
-from turtle_lite.rviz_screen import error_lines
-from turtle_lite.rviz_snapshot import RvizOnXvfb
+from turtlesim.msg import Pose
 
 ROBOTS = ('robot_0', 'robot_1', 'robot_2', 'robot_3')
 START_DEADLINE_S = 60.0  # roslaunch of the team, rosservice spawns, on a loaded machine
@@ -25,7 +26,7 @@ class MultiSyncViewsTest(unittest.TestCase):
         rospy.init_node('test_multi_sync_views')
 
     def test_tf_has_world_to_every_robot_matching_its_pose(self):
-        check = TfPoseCheck({r: '/%s/pose' % r for r in ROBOTS})
+        check = TfPoseCheck({r: '/%s/pose' % r for r in ROBOTS}, Pose)
         self.addCleanup(check.close)
         check.wait_agree(START_DEADLINE_S)
 

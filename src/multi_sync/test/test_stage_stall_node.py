@@ -26,7 +26,7 @@ STARTUP_S = 90.0
 EVENT_S = 30.0
 DRIVE_S = 120.0  # 17 s of sim time at real time to the back pair's stall, on a loaded machine
 SPEED_MPS = 0.2  # the lesson's; exact as a double on the wire
-# Where Stage stalls them on the workspace's floor plan (stage_multi's test_lesson_world.py
+# Where Stage stalls them on the workspace's floor plan (stage_lite's test_stage_golden.py
 # has the same from the model): deterministic, poses advance in whole 2 cm steps.
 STALL_TRAVEL_M = {0: 1.74, 1: 3.36, 2: 1.74, 3: 3.36}
 STALL_TOL_M = 0.021  # one 2 cm step, plus float noise

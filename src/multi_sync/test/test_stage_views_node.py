@@ -16,18 +16,18 @@ import rosgraph
 import rospkg
 import rospy
 import rostest
-from course_common.testing import ChildProcess, ScratchDirTestCase, results_dir, wait_for
-from course_common.testing.master import Roscore, subscribers_of
-from PIL import Image
-from stage_watch import StageWatch
-from team_watch import NodeProcess
-from turtle_lite.rviz_screen import (
+from course_common.rviz.screen import (
     colour_pixels,
     error_lines,
     missing_colours,
     render_area,
 )
-from turtle_lite.rviz_snapshot import RvizOnXvfb
+from course_common.rviz.snapshot import RvizOnXvfb
+from course_common.testing import ChildProcess, ScratchDirTestCase, results_dir, wait_for
+from course_common.testing.master import Roscore, subscribers_of
+from PIL import Image
+from stage_watch import StageWatch
+from team_watch import NodeProcess
 
 ROBOTS = 4
 RVIZ_DEADLINE_S = 180.0  # rviz with software GL, twice, on a loaded 2-core machine

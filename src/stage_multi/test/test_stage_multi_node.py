@@ -26,14 +26,17 @@ from course_common.testing.recorders import Recorder
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
+from stage_multi import lesson_world
+
 # The lesson's world: robot_N's start (x, y), all facing +x.
-STARTS = [(-11.5, 23.5), (-13.5, 23.5), (-11.5, 21.5), (-13.5, 21.5)]
+STARTS = lesson_world.STARTS
 ROBOTS = range(len(STARTS))
 FRONT, BACK = (0, 2), (1, 3)
 SPEED_MPS = 0.2  # the lesson's linear.x; exact as a double on the wire
 RATE_HZ = 10.0
 # Where real Stage 4.3.0 stalls them on the workspace's floor plan (the golden capture
-# test_lesson_world.py replays); on the lesson's own map real Stage gives 1.78 and 3.40.
+# stage_lite's test_stage_golden.py replays); on the lesson's own map real Stage gives 1.78
+# and 3.40.
 STALL_TRAVEL_M = {0: 1.74, 1: 3.36, 2: 1.74, 3: 3.36}
 STEP_M = 0.02  # 0.2 m/s for one 100 ms step: poses advance in whole steps
 STALL_TOL_M = STEP_M / 4  # the stall is at a whole step

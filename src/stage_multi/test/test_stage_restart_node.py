@@ -5,7 +5,6 @@ A restarted stageros sends /clock back to 0.1 s; rospy's Rate then gives up with
 ROSTimeMovedBackwardsException. The lesson's C++ ros::Rate carries on, and so must move_robot:
 else the robot stands still in the new world while its node seems alive.
 """
-import os
 import unittest
 
 import rospy
@@ -16,10 +15,10 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 
-WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'world',
-                     'willow-multi-erratic.world')
-STAGEROS = ['rosrun', 'stage_ros', 'stageros', '-g', WORLD]
-START_X = -11.5  # robot_0's start in the lesson's world
+from stage_multi import lesson_world
+
+STAGEROS = lesson_world.stageros_command('-g')
+START_X = lesson_world.STARTS[0][0]  # robot_0's start
 SPEED_MPS = 0.2
 DRIVE_OFF_M = 0.1  # this far along +x: the robot is driving
 BACK_M = 0.05  # within this of its start: a fresh world (the old one had it further on)

@@ -8,11 +8,12 @@ import unittest
 import rosnode
 import rospy
 import rostest
+from course_common.arena import WORLD_SIZE_M as WORLD
 from course_common.testing import START_DEADLINE_S, spawn, wait_for
 from course_common.testing.master import publisher_has_connected
 from course_common.testing.recorders import LogRecorder, Recorder
-from course_common.testing.turtlesim import WORLD, PoseRecorder
 from geometry_msgs.msg import Twist
+from turtlesim.msg import Pose
 from turtlesim.srv import Spawn, TeleportAbsolute
 
 SPEED_MPS = 0.5  # the slide's FORWARD_SPEED_MPS; exact in float32
@@ -34,7 +35,7 @@ class TestMoveTurtle(unittest.TestCase):
         rospy.wait_for_service('/spawn', START_DEADLINE_S)
         wait_for(lambda: '/move_turtle' in rosnode.get_node_names(), START_DEADLINE_S,
                  'the launch file\'s /move_turtle node')
-        cls.turtle1 = PoseRecorder('/turtle1/pose', keep=1)
+        cls.turtle1 = Recorder('/turtle1/pose', Pose, keep=1)
         wait_for(cls.turtle1.latest, START_DEADLINE_S, 'the first /turtle1/pose')
         cls.teleport1 = rospy.ServiceProxy('/turtle1/teleport_absolute', TeleportAbsolute)
 
@@ -66,7 +67,7 @@ class TestMoveTurtle(unittest.TestCase):
 
     def test_turtle2_by_argv(self):
         rospy.ServiceProxy('/spawn', Spawn)(*TURTLE2_START, 'turtle2')
-        poses = PoseRecorder('/turtle2/pose', keep=1)
+        poses = Recorder('/turtle2/pose', Pose, keep=1)
         commands = Recorder('/turtle2/cmd_vel', Twist)
         tool = spawn(['rosrun', 'my_turtle', 'move_turtle', 'turtle2', '__name:=move_turtle2'])
         self.addCleanup(tool.stop)

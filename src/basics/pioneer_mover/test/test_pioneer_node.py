@@ -6,10 +6,10 @@ import unittest
 
 import rospy
 import rostest
+from course_common.processes import ChildProcess
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, wait_for
 from course_common.testing.master import publisher_has_connected, topic_types
 from course_common.testing.recorders import LogRecorder, Recorder
-from course_common.testing.turtlesim import run_teleop
 from geometry_msgs.msg import Pose2D, Twist
 from turtlesim.msg import Pose
 from turtlesim.srv import TeleportAbsolute
@@ -103,7 +103,8 @@ class TestPioneer(unittest.TestCase):
 
     def test_teleop_arrow_keys_drive_at_quarter_speed(self):
         self._teleport(CENTRE)  # room to drive 0.1 m ahead, wherever other tests left it
-        teleop = run_teleop(('rosrun', 'turtlesim', 'turtle_teleop_key'))  # as the lab
+        # as the lab, on a terminal of its own
+        teleop = ChildProcess(('rosrun', 'turtlesim', 'turtle_teleop_key'), terminal=True).start()
         self.addCleanup(teleop.close)
         wait_for(lambda: BANNER_LAST in teleop.output(), START_DEADLINE_S, 'the teleop banner')
         wait_for(lambda: publisher_has_connected('/teleop_turtle', '/turtle1/cmd_vel', INTERFACE),

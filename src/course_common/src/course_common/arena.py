@@ -33,3 +33,11 @@ def inside(x, y, size_m=WORLD_SIZE_M):
     if size_m <= 0.0:
         raise ValueError('size_m = %r: expected a finite number > 0 (m)' % (size_m,))
     return 0.0 <= x <= size_m and 0.0 <= y <= size_m
+
+
+def arena_outline(size_m=WORLD_SIZE_M):
+    """The closed square (0, 0)-(size, size) as 5 points, the walls turtlesim clamps at."""
+    if not is_finite_number(size_m) or size_m <= 0:
+        raise ValueError('arena size %r: expected a finite number > 0 (m)' % (size_m,))
+    s = float(size_m)
+    return [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s), (0.0, 0.0)]

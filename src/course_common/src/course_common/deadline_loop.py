@@ -1,10 +1,8 @@
 """A function called in its own thread on absolute deadlines (turtlesim's tick, stageros's steps).
 
-Deadlines is the pure schedule (times come in as arguments, seconds on a monotonic clock);
-DeadlineLoop is the thread that sleeps until each deadline and makes the call. Deadlines that
-are absolute do not drift: a call that runs late does not push the later ones back.
+DeadlineLoop is the thread that sleeps until each deadline of a course_common.schedule
+Deadlines (the pure schedule) and makes the call.
 """
-import math
 import threading
 import time
 
@@ -12,39 +10,6 @@ import rospy
 
 #: How often a failing call is logged at most, s (it may fail at every tick).
 ERROR_LOG_PERIOD_S = 1.0
-
-
-class Deadlines:
-    """When each call is due: first at first_s, then every period_s after the last deadline.
-
-    period_s 0 means no pacing: each call is due as soon as the last one has ended. If the
-    loop falls more than max_lag_periods periods behind (a loaded machine, a suspended
-    process) the schedule restarts from then instead of running a burst of catch-up calls,
-    as a Qt timer does.
-    """
-
-    def __init__(self, period_s, first_s, max_lag_periods):
-        if not (math.isfinite(period_s) and period_s >= 0.0):
-            raise ValueError('period must be a finite number of seconds >= 0, not %r'
-                             % (period_s,))
-        if not max_lag_periods >= 0:
-            raise ValueError('max_lag_periods must be >= 0, not %r' % (max_lag_periods,))
-        self.period_s = period_s
-        self.next_s = first_s
-        self.max_lag_periods = max_lag_periods
-
-    def delay(self, now_s):
-        """Seconds to wait before the next call may run (0.0 when it is due)."""
-        return max(0.0, self.next_s - now_s)
-
-    def done(self, now_s):
-        """Record that the due call ended at now_s; schedules the next one."""
-        if self.period_s == 0.0:
-            self.next_s = now_s
-            return
-        self.next_s += self.period_s
-        if now_s - self.next_s > self.max_lag_periods * self.period_s:
-            self.next_s = now_s
 
 
 class DeadlineLoop:

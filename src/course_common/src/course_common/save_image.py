@@ -2,6 +2,7 @@
 
 turtle_lite/SaveImage and stage_lite/SaveImage are the same definition (string path in, the
 absolute path written out); each package keeps its own type, and both answer through here.
+write_png is the one PNG writer of both simulators' pictures.
 """
 import os
 
@@ -12,6 +13,17 @@ def image_path(requested, default):
     """The file a request asks for (its path, or the node's ~image_path when empty),
     absolute, with ~ expanded."""
     return os.path.abspath(os.path.expanduser(requested or default))
+
+
+def write_png(path, image):
+    """Writes image (a Pillow Image) to path as PNG, its folders made; ~ expanded. Returns the
+    absolute path written."""
+    path = os.path.abspath(os.path.expanduser(path))
+    directory = os.path.dirname(path)
+    if directory:
+        os.makedirs(directory, exist_ok=True)
+    image.save(path, format='PNG')
+    return path
 
 
 def save_logged(requested, default, write, subject):

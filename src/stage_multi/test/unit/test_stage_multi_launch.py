@@ -1,14 +1,17 @@
 """The launch files that start the lesson's world, as roslaunch reads them (no master): the
-lesson's stage_multi.launch, headless with gui:=false, and stage_ros's stageros.launch, whose
-default world is the lesson's, in stage_multi."""
+lesson's stage_multi.launch, headless with gui:=false, and stage_ros's stageros.launch on the
+lesson's world (its world argument is required: stage_ros depends on no lesson)."""
 import os
 
 import pytest
 import roslaunch.config
+import roslaunch.core
 import rospkg
 
+from stage_multi import lesson_world
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-LESSON_WORLD = os.path.join(HERE, '..', '..', 'world', 'willow-multi-erratic.world')
+LESSON_WORLD = lesson_world.world_path()
 ROSLAUNCH_PARAMS = {'/rosversion', '/rosdistro'}  # roslaunch's own, in every launch
 
 
@@ -38,7 +41,12 @@ def test_stage_multi_launch_is_the_lessons(args, flags):
 
 
 @pytest.mark.parametrize('args, flags', [((), []), (('gui:=false',), ['-g'])])
-def test_stageros_launch_runs_the_lessons_world_by_default(args, flags):
-    (node,) = launch('stage_ros', 'stageros.launch', *args).nodes
+def test_stageros_launch_runs_the_world_it_is_given(args, flags):
+    (node,) = launch('stage_ros', 'stageros.launch', 'world:=' + LESSON_WORLD, *args).nodes
     assert command_line(node) == flags + [os.path.realpath(LESSON_WORLD)]
     assert os.path.isfile(LESSON_WORLD)
+
+
+def test_stageros_launch_asks_for_its_world():
+    with pytest.raises(roslaunch.core.RLException, match='world'):
+        launch('stage_ros', 'stageros.launch')

@@ -10,8 +10,8 @@ import rospy
 from course_common.testing import START_DEADLINE_S, wait_for
 from course_common.testing.master import names_under
 from course_common.testing.recorders import LogRecorder
-from course_common.testing.turtlesim import ColorRecorder, PoseRecorder
 from std_srvs.srv import Empty
+from turtle_lite.testing import ColorRecorder, PoseRecorder
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelative
 
 DEFAULT_BG = (69, 86, 255)

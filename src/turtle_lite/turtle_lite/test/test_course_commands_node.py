@@ -14,7 +14,7 @@ import unittest
 import rospy
 import rostest
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
-from course_common.testing.turtlesim import (
+from turtle_lite.testing import (
     CENTER,
     POSE_TOL,
     ColorRecorder,

@@ -15,7 +15,7 @@ import rosgraph
 import rospy
 import rostest
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
-from course_common.testing.turtlesim import PoseRecorder
+from turtle_lite.testing import PoseRecorder
 
 INSTALL_DEADLINE_S = 300.0  # an incremental build plus the copy; generous on a loaded machine
 

@@ -9,12 +9,13 @@ import unittest
 
 import rospy
 import rostest
+from course_common.rviz.screen import error_lines
+from course_common.rviz.snapshot import RvizOnXvfb
 from course_common.testing import START_DEADLINE_S, results_dir, spawn, wait_for
 from course_common.testing.master import subscribers_of
-from course_common.testing.turtlesim import POSE_TOL, WORLD
 from course_common.testing.views import TfPoseCheck
-from turtle_lite.rviz_screen import error_lines
-from turtle_lite.rviz_snapshot import RvizOnXvfb
+from turtle_lite.testing import POSE_TOL, WORLD
+from turtlesim.msg import Pose
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute
 from visualization_msgs.msg import Marker, MarkerArray
 
@@ -46,13 +47,14 @@ class LessonViewsTest(unittest.TestCase):
         return None
 
     def test_every_turtle_of_both_simulators_in_tf(self):
-        check = TfPoseCheck({'turtle1': '/turtle1/pose', 'sim2/turtle1': '/sim2/turtle1/pose'})
+        check = TfPoseCheck({'turtle1': '/turtle1/pose', 'sim2/turtle1': '/sim2/turtle1/pose'},
+                            Pose)
         self.addCleanup(check.close)
         check.wait_agree(START_DEADLINE_S)
 
     def test_spawned_turtle_joins_moves_and_leaves(self):
         rospy.ServiceProxy('/spawn', Spawn)(2.0, 3.0, 1.0, 'robot2')
-        check = TfPoseCheck({'robot2': '/robot2/pose'})
+        check = TfPoseCheck({'robot2': '/robot2/pose'}, Pose)
         self.addCleanup(check.close)
         check.wait_agree(EVENT_DEADLINE_S)
         rospy.ServiceProxy('/robot2/teleport_absolute', TeleportAbsolute)(8.0, 1.0, -2.0)

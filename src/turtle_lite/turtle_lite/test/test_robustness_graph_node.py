@@ -8,8 +8,8 @@ import rostest
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
 from course_common.testing.master import graph_names, kill_node, published_topics, services
 from course_common.testing.recorders import Recorder
-from course_common.testing.turtlesim import PoseRecorder
 from sim_support import DEFAULT_BG, TURTLE_SERVICES, TURTLE_TOPICS
+from turtle_lite.testing import PoseRecorder
 from turtlesim.msg import Color
 from turtlesim.srv import Kill, Spawn
 

@@ -9,10 +9,10 @@ import rostest
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, wait_for
 from course_common.testing.master import graph_names, published_topics
 from course_common.testing.recorders import LogRecorder
-from course_common.testing.turtlesim import CENTER, PoseRecorder
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 from sim_support import SimTestCase, turtle_graph_names, wait_connected
+from turtle_lite.testing import CENTER, PoseRecorder
 from turtlesim.srv import Kill, Spawn, TeleportAbsolute, TeleportRelative
 
 POSE_TOL = 1e-4

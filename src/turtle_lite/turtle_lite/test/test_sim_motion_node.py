@@ -8,10 +8,10 @@ import time
 import rospy
 import rostest
 from course_common.testing import EVENT_DEADLINE_S, wait_for
-from course_common.testing.turtlesim import CENTER, POSE_TOL, WORLD, PoseRecorder
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 from sim_support import DEFAULT_BG, DEFAULT_PEN, SimTestCase, wait_connected
+from turtle_lite.testing import CENTER, POSE_TOL, WORLD, PoseRecorder
 
 WALL_RE = re.compile(r'^Oh no! I hit the wall! \(Clamping from \[x=(-?\d+\.\d{6}), '
                      r'y=(-?\d+\.\d{6})\]\)$')

@@ -5,9 +5,9 @@ import rospy
 import rostest
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, wait_for
 from course_common.testing.master import names_under
-from course_common.testing.turtlesim import CENTER, POSE_TOL, PoseRecorder
 from geometry_msgs.msg import Twist
 from sim_support import TURTLE_RESOURCES, SimTestCase, wait_connected
+from turtle_lite.testing import CENTER, POSE_TOL, PoseRecorder
 from turtlesim.srv import TeleportAbsolute
 
 

@@ -8,7 +8,7 @@ import rospy
 import rostest
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
 from course_common.testing.master import published_topics, subscribed_topics
-from course_common.testing.turtlesim import CENTER, PoseRecorder
+from turtle_lite.testing import CENTER, PoseRecorder
 from turtlesim.srv import Spawn, TeleportAbsolute
 
 POSE_TOL = 1e-4  # float32 poses, printed goals with 6 decimals

@@ -7,8 +7,8 @@ import unittest
 import rospy
 import rostest
 from course_common.testing import START_DEADLINE_S, wait_for
-from course_common.testing.turtlesim import CENTER, PoseRecorder
 from geometry_msgs.msg import Twist
+from turtle_lite.testing import CENTER, PoseRecorder
 from turtlesim.srv import TeleportAbsolute
 
 DISTANCE_M = 0.5  # how far both turtles must have gone to count as moving

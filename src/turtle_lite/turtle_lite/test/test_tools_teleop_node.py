@@ -10,8 +10,8 @@ import rostest
 from course_common.testing import EVENT_DEADLINE_S, START_DEADLINE_S, spawn, wait_for
 from course_common.testing.master import kill_node, publisher_has_connected
 from course_common.testing.recorders import Recorder
-from course_common.testing.turtlesim import run_teleop
 from geometry_msgs.msg import Twist
+from turtle_lite.testing import run_teleop
 
 BANNER_LAST = "Use arrow keys to move the turtle. 'q' to quit."
 

@@ -1,7 +1,7 @@
 """Test support for the tf and rviz views (rostest nodes of every package).
 
 TfPoseCheck compares tf's newest world -> <frame> transform with the newest pose on the
-turtle's pose topic.
+robot's pose topic (any message with x, y and theta: turtlesim/Pose, geometry_msgs/Pose2D).
 """
 
 import math
@@ -9,7 +9,6 @@ import threading
 
 import rospy
 import tf2_ros
-from turtlesim.msg import Pose
 
 from course_common.angles import yaw_from_quaternion
 from course_common.testing import wait_for
@@ -24,16 +23,17 @@ def yaw_of(q):
 
 
 class TfPoseCheck:
-    """Listens to tf and to the pose topics of `frames` ({frame: pose topic})."""
+    """Listens to tf and to the pose topics of `frames` ({frame: pose topic}), whose
+    messages are pose_class (x, y, theta)."""
 
-    def __init__(self, frames, parent='world'):
+    def __init__(self, frames, pose_class, parent='world'):
         self.parent = parent
         self.frames = dict(frames)
         self.buffer = tf2_ros.Buffer()
         self.listener = tf2_ros.TransformListener(self.buffer)
         self._lock = threading.Lock()
         self._poses = {}
-        self._subs = [rospy.Subscriber(topic, Pose, self._on_pose, callback_args=frame,
+        self._subs = [rospy.Subscriber(topic, pose_class, self._on_pose, callback_args=frame,
                                        queue_size=1) for frame, topic in self.frames.items()]
 
     def _on_pose(self, msg, frame):

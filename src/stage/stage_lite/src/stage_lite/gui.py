@@ -31,29 +31,25 @@ def _window_size(world):
     return min(w, MAX_SIZE_PX), min(h, MAX_SIZE_PX)
 
 
-def run_window(node):
-    """Show the window until ROS shuts down or it is closed; False if none could be opened."""
+def run_window(world, view, snapshot):
+    """Show the window until ROS shuts down or it is closed; False if none could be opened.
+
+    world: the World (its path and window block); view: its WorldView; snapshot(): (steps so
+    far, the robots' views), taken under the node's lock."""
     root = open_root('stageros: no display (DISPLAY is not set): running without a window '
                      '(use -g to ask for that)',
                      'stageros: the window could not be opened (%s): running without one')
     if root is None:
         return False
-    world = node.world
-    width, height = _window_size(world)
-    occupancy = world.occupancy()
-    view = picture.fit_view(picture.world_bounds(occupancy, [r.start_pose for r in world.robots]),
-                            width, height)
-    base = picture.floor_image(view, occupancy)
+    fitted, base = view.floor(*_window_size(world))
     state = {'step': None}
 
     def next_image():
-        with node.lock:
-            step = node.clock.steps
-            robots = node.services.robot_views() if step != state['step'] else None
-        if robots is None:  # redraw only when the world moved on
+        step, robots = snapshot()
+        if step == state['step']:  # redraw only when the world moved on
             return None
         state['step'] = step
-        return picture.render(view, base, robots)
+        return picture.render(fitted, base, robots)
 
     show_picture(root, 'Stage: %s' % os.path.basename(world.path), base, next_image,
                  REFRESH_MS, 0, rospy.is_shutdown)

@@ -10,11 +10,10 @@ import struct
 
 import numpy as np
 
-from .wire import string_bytes
+from .wire import HEADER_STAMP, string_bytes
 
 OCCUPIED = 100
 FREE = 0
-_STAMP = struct.Struct('<III')
 _INFO = struct.Struct('<IIfII7d')   # map_load_time, resolution, width, height, origin pose
 
 
@@ -44,7 +43,7 @@ def grid_body(secs, nsecs, frame_id, cells, resolution_m, origin_x, origin_y, se
     """The serialised OccupancyGrid (no length prefix): row 0 of cells is the lowest y."""
     rows, cols = cells.shape
     data = np.ascontiguousarray(cells, dtype=np.int8)
-    return b''.join((_STAMP.pack(seq, secs, nsecs), string_bytes(frame_id),
+    return b''.join((HEADER_STAMP.pack(seq, secs, nsecs), string_bytes(frame_id),
                      _INFO.pack(secs, nsecs, resolution_m, cols, rows,
                                 origin_x, origin_y, 0.0, 0.0, 0.0, 0.0, 1.0),
                      struct.pack('<I', data.size), data.tobytes()))

@@ -6,17 +6,14 @@
   out). Stage 4.3 runs flat out headless (rtv/Stage #89); stageros here runs in real time
   unless the world's ``speedup`` or ~speedup say otherwise.
 - Watchdog: stage_ros's base_watchdog_timeout: one shared time of the last cmd_vel, in sim time.
-- Throttle: at most one event per period (the WARNs about bad commands).
+(The WARNs about bad commands are throttled by course_common.schedule.Throttle.)
 """
 import math
 
-from course_common.deadline_loop import Deadlines
+from course_common.schedule import Deadlines
 
 #: Flat out: no pacing, the next step starts when the last one is published.
 FLAT_OUT = -1.0
-#: If the loop falls this many periods behind (a loaded machine, a suspended process) it
-#: restarts its schedule from now instead of running a burst of catch-up steps.
-MAX_LAG_STEPS = 5
 
 
 def check_speedup(value):
@@ -66,12 +63,7 @@ class Pacer(Deadlines):
 
     def __init__(self, interval_s, speedup, now_s):
         check_speedup(speedup)
-        super().__init__(0.0 if speedup == FLAT_OUT else interval_s / speedup, now_s,
-                         MAX_LAG_STEPS)
-
-    def stepped(self, now_s):
-        """Record that a step ran at now_s; schedules the next one."""
-        self.done(now_s)
+        super().__init__(0.0 if speedup == FLAT_OUT else interval_s / speedup, now_s)
 
 
 class Watchdog:
@@ -90,17 +82,3 @@ class Watchdog:
     def expired(self, now_ns):
         """True when the robots must be stopped at this step (stageros: diff >= timeout)."""
         return self.timeout_ns > 0 and now_ns - self.last_cmd_ns >= self.timeout_ns
-
-
-class Throttle:
-    """ready(now) is True at most once per period_s (the first call included)."""
-
-    def __init__(self, period_s):
-        self.period_s = period_s
-        self._last = -math.inf
-
-    def ready(self, now_s):
-        if now_s - self._last >= self.period_s:
-            self._last = now_s
-            return True
-        return False

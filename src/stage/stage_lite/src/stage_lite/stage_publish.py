@@ -92,12 +92,6 @@ class RobotOutput:
         self.last_stall = bool(robot.stalled)
         return self.last_stall
 
-    def unregister(self):
-        for pub in (self.odom_pub, self.truth_pub, *self.scan_pubs, self.stall_pub):
-            if pub is not None:
-                pub.unregister()
-        self.cmd_sub.unregister()
-
 
 class StepOutput:
     """Every robot's output plus the global /clock and /tf."""

@@ -44,19 +44,18 @@ import rosgraph
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.rospy_internals import cheap_rosout
+from course_common.schedule import BAD_INPUT_WARN_PERIOD_S, Throttle
 from course_common.startup import init_node
 
 from .names import all_robot_names, shared_namespaces
-from .pacing import SimClock, Throttle, Watchdog, world_speedup
+from .pacing import SimClock, Watchdog, world_speedup
 from .rospy_clock import drop_own_clock_subscription, set_own_time
 from .stage_publish import StepOutput
 from .stage_services import StageServices
 from .stageros_args import ArgsError, parse_args
 from .stageros_params import load_params
 from .step_loop import StepLoop
-
-#: Throttle period of the WARN about bad commands (a bad publisher can repeat at any rate).
-BAD_INPUT_WARN_PERIOD_S = 1.0
+from .world_view import WorldView
 
 
 class StageNode:
@@ -76,8 +75,10 @@ class StageNode:
         for line in shared_namespaces(self.names):
             rospy.logwarn(line)
         self.output = StepOutput(world, self.names, params, self.on_cmd_vel)
-        self.services = StageServices(self)
-        self.loop = StepLoop(self, node_speedup(world, params))
+        self.view = WorldView(world)
+        self.services = StageServices(world, self.lock, self.view, params, self.names)
+        self.loop = StepLoop(self.step, world.interval_sim_s, node_speedup(world, params),
+                             world.quit_time_s, self.output.wait_for_waiting_subscribers)
 
     def on_cmd_vel(self, msg, index):
         vx, vy, wz = msg.linear.x, msg.linear.y, msg.angular.z
@@ -97,7 +98,7 @@ class StageNode:
             self.clock.tick()
             stamp = self.clock.stamp()
             frames, stalls = self.output.collect(self.world, stamp)
-            self.services.after_step()
+            self.view.record()
             # After collecting: the odom of this step still shows the command it moved with,
             # as in stageros, where SetSpeed(0) takes effect at the next world update.
             if self.watchdog.expired(self.clock.now_ns):
@@ -106,6 +107,11 @@ class StageNode:
         self.output.send(frames, stalls)
         set_own_time(*stamp)
         return now_s
+
+    def snapshot(self):
+        """(steps so far, the robots' views) taken under the lock, for the window."""
+        with self.lock:
+            return self.clock.steps, self.view.robots()
 
     def describe(self):
         w = self.world
@@ -218,7 +224,7 @@ def main(argv=None):
     try:
         if args.gui:
             from .gui import run_window  # tkinter only when a window is wanted
-            run_window(node)
+            run_window(world, node.view, node.snapshot)
         rospy.spin()
     finally:
         node.loop.stop()

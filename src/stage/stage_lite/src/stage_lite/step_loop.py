@@ -12,18 +12,21 @@ FIRST_STEP_WAIT_S = 0.1
 
 
 class StepLoop(DeadlineLoop):
-    """Calls node.step() on the Pacer's schedule in its own thread until stopped or shut down.
+    """Calls step() on the Pacer's schedule in its own thread until stopped or shut down.
 
-    Stops stepping when the world's quit_time is reached: as in stageros, the world stands
-    still (the clock frozen) and the node stays up with its topics and services. An
-    exception from a step is logged (throttled) and the loop goes on.
+    step() makes one world step and returns the sim time it reached, s; interval_s is the
+    world's interval_sim; quit_time_s the world's quit_time (0: none); before_first(wait_s)
+    is called once, before the first step. Stops stepping when quit_time is reached: as in
+    stageros, the world stands still (the clock frozen) and the node stays up with its topics
+    and services. An exception from a step is logged (throttled) and the loop goes on.
     """
 
-    def __init__(self, node, speedup):
-        self.node = node
+    def __init__(self, step, interval_s, speedup, quit_time_s=0.0, before_first=None):
+        self.step = step
+        self.interval_s = interval_s
         self.speedup = speedup
-        world = node.world
-        self._quit_s = world.quit_time_s if world.quit_time_s > 0 else None
+        self._quit_s = quit_time_s if quit_time_s > 0 else None
+        self._before_first = before_first
         super().__init__(self._step, self._schedule, 'stageros_steps', 'stageros step')
 
     def describe(self):
@@ -33,12 +36,13 @@ class StepLoop(DeadlineLoop):
 
     def _schedule(self):
         # So that nodes started before stageros get its first step (t = 0.1 s) too.
-        self.node.output.wait_for_waiting_subscribers(FIRST_STEP_WAIT_S)
-        return Pacer(self.node.world.interval_sim_s, self.speedup, time.monotonic())
+        if self._before_first is not None:
+            self._before_first(FIRST_STEP_WAIT_S)
+        return Pacer(self.interval_s, self.speedup, time.monotonic())
 
     def _step(self):
         """One step; False once quit_time is reached (the loop ends, the node stays)."""
-        now_s = self.node.step()
+        now_s = self.step()
         if self._quit_s is not None and now_s is not None and now_s >= self._quit_s - 1e-9:
             rospy.loginfo('stageros: quit_time %g s reached: the world stops here, the node '
                           'stays up (as stageros)', self._quit_s)

@@ -16,7 +16,7 @@ import struct
 import numpy as np
 
 _U32 = struct.Struct('<I')
-_STAMP = struct.Struct('<III')        # seq, secs, nsecs
+HEADER_STAMP = struct.Struct('<III')  # a Header's seq, secs, nsecs
 _CLOCK = struct.Struct('<III')        # length 8, secs, nsecs
 _POSE = struct.Struct('<7d')
 _TWIST = struct.Struct('<6d')
@@ -99,7 +99,7 @@ def odometry_frame(seq, secs, nsecs, frame_id, child_frame_id, pose, twist,
     """
     x, y, yaw = pose
     vx, vy, wz = twist
-    return _frame((_STAMP.pack(seq, secs, nsecs), frame_id, child_frame_id,
+    return _frame((HEADER_STAMP.pack(seq, secs, nsecs), frame_id, child_frame_id,
                    _POSE.pack(x, y, 0.0, *quaternion(yaw)), _ZERO_COVARIANCE,
                    _TWIST.pack(vx, vy, 0.0, 0.0, 0.0, wz), _ZERO_COVARIANCE))
 
@@ -119,14 +119,14 @@ class ScanTemplate:
         """sensor_msgs/LaserScan with ranges and intensities (float32 arrays of samples)."""
         r = np.ascontiguousarray(ranges, dtype='<f4')
         i = np.ascontiguousarray(intensities, dtype='<f4')
-        return _frame((_STAMP.pack(seq, secs, nsecs), self.frame_id, self.fields,
+        return _frame((HEADER_STAMP.pack(seq, secs, nsecs), self.frame_id, self.fields,
                        _U32.pack(r.size), r.tobytes(), _U32.pack(i.size), i.tobytes()))
 
 
 def transform_bytes(secs, nsecs, parent, child, x, y, z, yaw):
     """One geometry_msgs/TransformStamped (seq 0, as tf's broadcaster leaves it); the
     rotation as stageros's tf::Transform gives it back (transform_quaternion)."""
-    return b''.join((_STAMP.pack(0, secs, nsecs), parent, child,
+    return b''.join((HEADER_STAMP.pack(0, secs, nsecs), parent, child,
                      _TRANSFORM.pack(x, y, z, *transform_quaternion(yaw))))
 
 

@@ -5,10 +5,10 @@ data (an occupancy grid, RobotView tuples), so this module is tested without a s
 Beams are drawn as one filled polygon per ranger (the region the laser sees), not 1081 lines.
 """
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
+from course_common.trail import Trail
 
 FREE_RGB = (255, 255, 255)
 WALL_RGB = (77, 77, 77)        # Stage's gray30 floor plan
@@ -162,36 +162,20 @@ def render(view, base, robots):
     return image
 
 
-def save_png(path, image):
-    """Write image to path (directories created); returns the absolute path."""
-    path = os.path.abspath(os.path.expanduser(path))
-    directory = os.path.dirname(path)
-    if directory:
-        os.makedirs(directory, exist_ok=True)
-    image.save(path, format='PNG')
-    return path
-
-
 class Trails:
-    """The recent path of each robot, for pictures: a point whenever it moved min_step_m."""
+    """The recent path of each robot, for pictures: a point whenever it moved min_step_m
+    (course_common.trail.Trail, one per robot)."""
 
     def __init__(self, count, min_step_m=0.05, max_points=2000):
-        self.min_step_m = min_step_m
-        self.max_points = max_points
-        self._points = [[] for _ in range(count)]
+        self._trails = [Trail(max_points, min_step_m) for _ in range(count)]
 
     def add(self, index, x, y):
-        points = self._points[index]
-        if points and math.hypot(x - points[-1][0], y - points[-1][1]) < self.min_step_m:
-            return
-        points.append((x, y))
-        if len(points) > self.max_points:
-            del points[:len(points) - self.max_points]
+        self._trails[index].add(x, y)
 
     def clear(self):
-        for points in self._points:
-            points.clear()
+        for trail in self._trails:
+            trail.clear()
 
     def get(self, index):
         """K x 2 array of robot index's trail (K may be 0)."""
-        return np.asarray(self._points[index], dtype=float).reshape(-1, 2)
+        return np.asarray(self._trails[index].points(), dtype=float).reshape(-1, 2)

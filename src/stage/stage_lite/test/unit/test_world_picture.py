@@ -3,6 +3,7 @@ import math
 
 import numpy as np
 import pytest
+from course_common.save_image import write_png
 from stage_lite import world_picture as picture
 from stage_lite.world_picture import RangerView, RobotView, Trails
 
@@ -71,10 +72,10 @@ def test_footprint_follows_origin_and_yaw():
     assert corners[:, 1].max() == pytest.approx(2.0 + 0.1, abs=TOL)
 
 
-def test_save_png_creates_directories(tmp_path):
+def test_the_floor_image_saves_as_png_in_new_directories(tmp_path):
     occ = _room()
     view = picture.fit_view(picture.world_bounds(occ), 50, 50)
-    path = picture.save_png(str(tmp_path / 'a' / 'b.png'), picture.floor_image(view, occ))
+    path = write_png(str(tmp_path / 'a' / 'b.png'), picture.floor_image(view, occ))
     assert path.endswith('b.png') and (tmp_path / 'a' / 'b.png').stat().st_size > 0
 
 

@@ -4,15 +4,17 @@ import threading
 from dataclasses import dataclass
 
 import rospy
+from course_common.arena import arena_outline
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_int, check_name, check_namespace, check_number
+from course_common.rviz.colours import ARENA_RGB, robot_color
 from course_common.startup import init_node
+from course_common.trail import Trail
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
 from turtle_lite.pose_watch import PoseWatch
-from turtle_lite.trails import ARENA_RGB, Trail, arena_outline, robot_color
 
 LINE_WIDTH_M = 0.05
 ARROW_SIZE_M = (0.8, 0.15, 0.15)  # length, shaft and head diameter: a turtle is about 0.5 m

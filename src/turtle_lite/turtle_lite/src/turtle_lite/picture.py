@@ -6,9 +6,9 @@ canvas, never on the canvas itself, so color_sensor never sees them (as in turtl
 """
 
 import math
-import os
 
 from course_common.arena import METER_PX, WORLD_SIZE_M
+from course_common.save_image import write_png
 from PIL import Image, ImageDraw
 
 SHELL_RGB = (46, 139, 87)
@@ -60,9 +60,4 @@ def render(pixels, poses):
 
 def save_png(path, pixels, poses):
     """Write the rendered picture to ``path`` (directories created); returns the absolute path."""
-    path = os.path.abspath(path)
-    directory = os.path.dirname(path)
-    if directory:
-        os.makedirs(directory, exist_ok=True)
-    render(pixels, poses).save(path, format='PNG')
-    return path
+    return write_png(path, render(pixels, poses))

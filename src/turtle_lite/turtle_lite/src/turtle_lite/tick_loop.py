@@ -1,11 +1,8 @@
 """turtlesim_node's tick thread: a function called on absolute deadlines, like a Qt timer."""
 import time
 
-from course_common.deadline_loop import DeadlineLoop, Deadlines
-
-#: If the thread falls this many periods behind (machine suspended or overloaded) it
-#: re-anchors its schedule instead of firing a burst of catch-up ticks, as a Qt timer does.
-MAX_LAG_TICKS = 4
+from course_common.deadline_loop import DeadlineLoop
+from course_common.schedule import Deadlines
 
 
 class TickLoop(DeadlineLoop):
@@ -17,6 +14,5 @@ class TickLoop(DeadlineLoop):
     """
 
     def __init__(self, tick, period_s, name):
-        super().__init__(tick, lambda: Deadlines(period_s, time.monotonic() + period_s,
-                                                 MAX_LAG_TICKS),
+        super().__init__(tick, lambda: Deadlines(period_s, time.monotonic() + period_s),
                          name, 'turtlesim tick', stop_at_shutdown=False)

@@ -30,6 +30,7 @@ from course_common.arena import SPAWN_M
 from course_common.graph_names import graph_name_error
 from course_common.rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
 from course_common.save_image import answer_save_image, save_logged
+from course_common.schedule import BAD_INPUT_WARN_PERIOD_S
 from course_common.startup import init_node
 from std_srvs.srv import Empty, EmptyResponse
 from turtlesim.srv import (
@@ -53,8 +54,6 @@ from .turtle_handle import TurtleHandle
 from .wall_log import WallLog
 from .world import DT_S, MAX_ABS_VELOCITY, World
 
-#: Throttle period of the WARNs about bad input (a bad publisher can repeat at any rate).
-BAD_INPUT_WARN_PERIOD_S = 1.0
 #: On shutdown, how long to wait for rospy to finish its hooks, then how long to give its
 #: XML-RPC thread to send the reply to the shutdown request (rospy itself sleeps 0.1 s).
 SHUTDOWN_REPLY_WAIT_S = 0.4

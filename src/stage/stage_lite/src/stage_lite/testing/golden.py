@@ -22,6 +22,7 @@ AssertionError naming the step, the robot and the ranger where they differ:
 """
 import json
 import math
+import os
 
 import numpy as np
 
@@ -38,6 +39,17 @@ def load(path):
     with np.load(path) as data:
         arrays = {k: data[k] for k in data.files if k != 'meta'}
         return arrays, json.loads(str(data['meta']))
+
+
+def world_path(gold, meta, worlds_dir, scratch_dir):
+    """The captured world's file: the one embedded in the capture (make_golden.py --embed),
+    written with its bitmaps into scratch_dir, else worlds_dir's."""
+    if not meta.get('embedded'):
+        return os.path.join(worlds_dir, meta['world'])
+    for name in meta['embedded']:
+        with open(os.path.join(scratch_dir, name), 'wb') as f:
+            f.write(gold['file/' + name].tobytes())
+    return os.path.join(scratch_dir, meta['world'])
 
 
 def car_goal(robot, twist):

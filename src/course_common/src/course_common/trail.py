@@ -1,4 +1,5 @@
-"""What rviz draws of a lesson: the arena outline and each robot's trail, bounded in length.
+"""A robot's trail, bounded in length: what rviz's markers (turtle_lite's lesson_markers) and
+stageros's pictures draw of where each robot went.
 
 No rospy: points are (x, y) in metres in the world frame.
 """
@@ -6,16 +7,7 @@ No rospy: points are (x, y) in metres in the world frame.
 import math
 from collections import deque
 
-from course_common.arena import WORLD_SIZE_M
 from course_common.finite import is_finite_number
-
-
-def arena_outline(size_m=WORLD_SIZE_M):
-    """The closed square (0, 0)-(size, size) as 5 points, the walls turtlesim clamps at."""
-    if not is_finite_number(size_m) or size_m <= 0:
-        raise ValueError('arena size %r: expected a finite number > 0 (m)' % (size_m,))
-    s = float(size_m)
-    return [(0.0, 0.0), (s, 0.0), (s, s), (0.0, s), (0.0, 0.0)]
 
 
 class Trail:
@@ -52,19 +44,8 @@ class Trail:
         """The points, oldest first."""
         return list(self._points)
 
+    def clear(self):
+        self._points.clear()
+
     def __len__(self):
         return len(self._points)
-
-
-#: Robot colours (r, g, b in 0..1), cycled in the order robots are first seen: distinct on
-#: rviz's dark grey background and none of them the arena's yellow.
-PALETTE = ((0.20, 0.80, 0.20), (0.95, 0.30, 0.25), (0.30, 0.60, 1.00), (0.90, 0.40, 0.90),
-           (0.20, 0.90, 0.90), (1.00, 0.60, 0.20), (0.70, 0.70, 0.70), (0.60, 0.45, 0.25))
-ARENA_RGB = (1.0, 0.85, 0.0)
-
-
-def robot_color(index):
-    """The colour of the index-th robot seen (index >= 0), cycling through PALETTE."""
-    if not isinstance(index, int) or isinstance(index, bool) or index < 0:
-        raise ValueError('robot index %r: expected an integer >= 0' % (index,))
-    return PALETTE[index % len(PALETTE)]

@@ -1,13 +1,12 @@
-"""Test helpers for anything that drives a turtlesim (turtle_lite's tests and the lessons').
+"""Test helpers of turtle_lite's own tests (the lessons' tests use course_common's).
 
 The simulator's constants as a test checks them, recorders of a turtle's pose and colour
 sensor, and turtle_teleop_key on a terminal of its own.
 """
-from turtlesim.msg import Color, Pose
-
 from course_common.arena import SPAWN_M, WORLD_SIZE_M
 from course_common.processes import ChildProcess
 from course_common.testing.recorders import Recorder
+from turtlesim.msg import Color, Pose
 
 #: float32 pose fields compared to this tolerance.
 POSE_TOL = 1e-5

@@ -1,7 +1,7 @@
 """rviz_snapshot: rviz with a configuration file on its own Xvfb screen, and a PNG of it.
 
 Used by the rviz tests and by anyone who wants a picture of a running lesson without a display:
-    rosrun turtle_lite rviz_snapshot $(rospack find convoy)/rviz/convoy.rviz --out convoy.png
+    rosrun course_common rviz_snapshot $(rospack find convoy)/rviz/convoy.rviz --out convoy.png
 It starts Xvfb on a free display and rviz on it with Mesa's software renderer (llvmpipe), waits
 until rviz subscribes to every topic the file names and its view shows the arena, the robots
 and their labels (rviz_screen), saves the screen, and stops both. Needs a running master,
@@ -14,13 +14,13 @@ import sys
 
 import numpy as np
 import rosgraph
-from course_common.processes import ChildProcess
-from course_common.waiting import wait_for
-from course_common.xvfb import Xvfb
 from PIL import Image, ImageGrab
 
-from turtle_lite.rviz_config import display_topics
-from turtle_lite.rviz_screen import shows_lesson
+from course_common.processes import ChildProcess
+from course_common.rviz.config import display_topics
+from course_common.rviz.screen import shows_lesson
+from course_common.waiting import wait_for
+from course_common.xvfb import Xvfb
 
 SCREEN = (1024, 800)
 START_DEADLINE_S = 60.0  # rviz with software GL on a loaded 2-core machine

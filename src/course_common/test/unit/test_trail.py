@@ -1,10 +1,10 @@
-"""Unit tests of turtle_lite.trails: the arena outline and bounded trails."""
+"""Unit tests of course_common.trail (bounded trails) and course_common.arena's outline."""
 
 import math
 
 import pytest
-from course_common.arena import WORLD_SIZE_M
-from turtle_lite.trails import ARENA_RGB, PALETTE, Trail, arena_outline, robot_color
+from course_common.arena import WORLD_SIZE_M, arena_outline
+from course_common.trail import Trail
 
 
 def test_arena_outline_is_the_closed_world_square():
@@ -55,21 +55,3 @@ def test_trail_refuses_non_finite_points(x, y):
     with pytest.raises(ValueError, match='trail point'):
         trail.add(x, y)
     assert trail.points() == []
-
-
-@pytest.mark.parametrize('index, expected', [
-    (0, PALETTE[0]), (1, PALETTE[1]), (len(PALETTE), PALETTE[0]), (len(PALETTE) + 2, PALETTE[2]),
-])
-def test_robot_color_cycles(index, expected):
-    assert robot_color(index) == expected
-
-
-def test_palette_is_distinct_and_not_the_arena():
-    assert len(set(PALETTE)) == len(PALETTE)
-    assert ARENA_RGB not in PALETTE
-
-
-@pytest.mark.parametrize('index', [-1, 1.0, None, True])
-def test_robot_color_rejects_bad_index(index):
-    with pytest.raises(ValueError, match='robot index'):
-        robot_color(index)

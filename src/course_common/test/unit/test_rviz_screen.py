@@ -1,8 +1,9 @@
-"""Unit tests of turtle_lite.rviz_screen: is rviz's view showing the lesson, and its log."""
+"""Unit tests of course_common.rviz.screen: is rviz's view showing the lesson, and its log."""
 
 import numpy as np
 import pytest
-from turtle_lite.rviz_screen import (
+from course_common.rviz.colours import ARENA_RGB, PALETTE
+from course_common.rviz.screen import (
     BACKGROUND,
     MIN_TEXT_PIXELS,
     colour_pixels,
@@ -11,7 +12,6 @@ from turtle_lite.rviz_screen import (
     render_area,
     shows_lesson,
 )
-from turtle_lite.trails import ARENA_RGB, PALETTE
 
 WIDGET_GREY = (239, 239, 239)  # Qt's panels around the 3D view
 

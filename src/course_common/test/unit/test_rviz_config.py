@@ -1,12 +1,12 @@
-"""Unit tests of turtle_lite.rviz_config: the topics a .rviz file makes rviz subscribe to."""
+"""Unit tests of course_common.rviz.config: the topics a .rviz file makes rviz subscribe to."""
 
 import os
 
 import pytest
-from turtle_lite.rviz_config import display_topics, fixed_frame
+from course_common.rviz.config import display_topics, fixed_frame
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SRC = os.path.normpath(os.path.join(HERE, '..', '..', '..', '..'))  # the workspace's src/
+SRC = os.path.normpath(os.path.join(HERE, '..', '..', '..'))  # the workspace's src/
 
 
 def _config(displays):

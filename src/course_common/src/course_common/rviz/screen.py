@@ -5,7 +5,7 @@ Images are H x W x 3 uint8 arrays. The colours are lesson_markers' and the .rviz
 
 import numpy as np
 
-from turtle_lite.trails import ARENA_RGB, PALETTE
+from course_common.rviz.colours import ARENA_RGB, PALETTE
 
 #: The .rviz files' "Background Color" (48; 48; 48): only rviz's 3D view has it.
 BACKGROUND = (48, 48, 48)
