@@ -130,7 +130,7 @@ class PurePursuit:
 
 
 def step_unicycle(pose, command, dt_s):
-    """turtlesim's update: turn first, then move along the new heading (TURTLESIM.md 1.6)."""
+    """turtlesim's update: turn first, then move along the new heading (turtle.cpp)."""
     theta = wrap_angle(pose.theta + command.angular_radps * dt_s)
     return Pose(pose.x + math.cos(theta) * command.linear_mps * dt_s,
                 pose.y + math.sin(theta) * command.linear_mps * dt_s,

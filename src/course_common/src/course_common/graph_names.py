@@ -13,7 +13,7 @@ def graph_name_error(name):
     """roscpp's ``ros::names::validate`` message for ``name``, or None when it is valid.
 
     The texts are roscpp's, byte for byte (note the two spaces after the full stop), because
-    turtlesim reports them to the client and the log (TURTLESIM.md 1.8). Only ASCII letters
+    turtlesim reports them to the client and the log (turtle_frame.cpp's spawn). Only ASCII letters
     and digits count, as with C's isalpha/isalnum in the "C" locale.
     """
     if not name:

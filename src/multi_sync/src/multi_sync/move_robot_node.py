@@ -27,15 +27,16 @@ WALL_STAMP_S = 3600.0
 
 @dataclass(frozen=True)
 class MoveRobotConfig:
-    """move_robot's private parameters (see MoveRobotNode)."""
+    """move_robot's private parameters (see MoveRobotNode); how it drives defaults to
+    DriveLimits' (the one place of the lesson's 0.2 m/s, 0.5 m and 1.0 m)."""
 
-    speed_mps: float = 0.2
+    speed_mps: float = DriveLimits.speed_mps
     rate_hz: float = 10.0
-    stop_distance_m: float = 0.5
-    min_gap_m: float = 1.0
+    stop_distance_m: float = DriveLimits.stop_distance_m
+    min_gap_m: float = DriveLimits.min_gap_m
     cone_half_angle_rad: float = 0.35
     input_timeout_s: float = 2.0
-    world_size_m: float = WORLD_SIZE_M
+    world_size_m: float = DriveLimits.world_size_m
     announce_period_s: float = 1.0
     report_period_s: float = 5.0
 

@@ -4,7 +4,7 @@ import math
 import pytest
 from multi_sync.laser_ahead import cone_indices, nearest_ahead_m
 
-# The lesson's topurg: 1081 beams over 270.25 degrees, 0..30 m (STAGE.md section 1).
+# The lesson's topurg: 1081 beams over 270.25 degrees, 0..30 m (its world file).
 FOV = math.radians(270.25)
 N = 1081
 AMIN, AINC = -FOV / 2, FOV / (N - 1)

@@ -162,7 +162,7 @@ def _state(probe, robot):
 
 
 def test_robot_host_cut_and_restored_on_stage(team, hosts3):
-    """Stage: stageros's watchdog is one time for all robots (STAGE.md 3), which host 2's
+    """Stage: stageros's watchdog is one time for all robots (stageros.cpp), which host 2's
     robots keep resetting, so host 3's robots keep their last command: they drive on blind
     (their bumpers run on host 3, which hears no scans), the front one into the wall and the
     back one into its back, unless that one shared watchdog happens to expire (0.2 s of sim

@@ -17,7 +17,7 @@ from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute, TeleportRelativ
 DEFAULT_BG = (69, 86, 255)
 DEFAULT_PEN = (179, 184, 255)
 
-#: The six graph resources of one turtle, relative to its namespace (TURTLESIM.md 1.3).
+#: The six graph resources of one turtle, relative to its namespace (turtle.cpp).
 TURTLE_TOPICS = ("cmd_vel", "pose", "color_sensor")
 TURTLE_SERVICES = ("set_pen", "teleport_relative", "teleport_absolute")
 TURTLE_RESOURCES = TURTLE_TOPICS + TURTLE_SERVICES

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""turtlesim_node motion conformance (TURTLESIM.md Part 3 items 1-8)."""
+"""turtlesim_node motion conformance: the worked trajectory, rates, the wrap, the timeout."""
 
 import math
 import re

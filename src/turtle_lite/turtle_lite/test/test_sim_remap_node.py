@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""<remap from="/turtle1" to="/robot1"/> moves all of turtle1 (TURTLESIM.md 1.9, item 15)."""
+"""<remap from="/turtle1" to="/robot1"/> moves all of turtle1."""
 
 import rospy
 import rostest

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""turtlesim_node services, names and params (TURTLESIM.md Part 3 items 9-14, 17), and PNGs."""
+"""turtlesim_node services, names and params, and PNGs."""
 
 import os
 import shutil
@@ -42,7 +42,7 @@ class SimServicesTest(SimTestCase):
             call(*args)
 
     def test_name_counter(self):
-        """Item 9 (TURTLESIM.md 1.8 example)."""
+        """turtle_frame.cpp's naming: the next free turtleN."""
         self.assertEqual(self.spawn(1, 1, 0, 'turtle3').name, 'turtle3')
         self.assertEqual(self.spawn(1, 1, 0, '').name, 'turtle2')
         self.assertEqual(self.spawn(1, 1, 0, '').name, 'turtle4')

@@ -1,6 +1,6 @@
 """stageros's names: relative with one robot, /robot_<N>/ with several or -u, base_scan_<k>."""
 import pytest
-from stage_lite.names import all_robot_names, prefix, robot_names, shared_namespaces
+from stage_lite.node.names import all_robot_names, prefix, robot_names, shared_namespaces
 
 
 @pytest.mark.parametrize('index, model, count, umn, expected', [

@@ -2,7 +2,7 @@
 import math
 
 import pytest
-from stage_lite.pacing import (
+from stage_lite.node.pacing import (
     FLAT_OUT,
     Pacer,
     SimClock,

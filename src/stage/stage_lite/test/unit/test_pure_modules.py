@@ -12,9 +12,9 @@ MODEL = sorted('stage_lite.model.' + name[:-3]
                for name in os.listdir(os.path.join(PACKAGE, 'model'))
                if name.endswith('.py') and name != '__init__.py')
 # The node's pure helpers: the glue modules (stageros_node, step_loop, ...) import rospy.
-HELPERS = ['stage_lite.map_msg', 'stage_lite.names', 'stage_lite.pacing', 'stage_lite.world_view',
-           'stage_lite.stageros_args', 'stage_lite.wire', 'stage_lite.world_picture',
-           'stage_lite.testing.golden']
+HELPERS = ['stage_lite.node.' + name for name in (
+    'map_msg', 'names', 'pacing', 'stageros_args', 'wire', 'world_picture', 'world_view')] \
+    + ['stage_lite.testing.golden']
 CHECK = ('import importlib, sys; importlib.import_module(sys.argv[1]); '
          "print(sorted(m for m in ('rospy', 'genpy', 'rosgraph') if m in sys.modules))")
 

@@ -1,4 +1,4 @@
-"""Pins, without a master, the rospy internals stage_lite.rospy_clock relies on."""
+"""Pins, without a master, the rospy internals stage_lite.node.rospy_clock relies on."""
 import inspect
 
 import pytest
@@ -6,7 +6,7 @@ import rospy
 import rospy.impl.simtime
 import rospy.rostime
 from course_common.testing import pin
-from stage_lite import rospy_clock
+from stage_lite.node import rospy_clock
 
 
 def test_simtime_keeps_its_clock_subscriber_in_a_module_global():

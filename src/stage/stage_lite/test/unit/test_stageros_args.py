@@ -1,6 +1,6 @@
 """stageros's command line: flags anywhere before the world file, which comes last."""
 import pytest
-from stage_lite.stageros_args import USAGE, ArgsError, parse_args
+from stage_lite.node.stageros_args import USAGE, ArgsError, parse_args
 
 
 @pytest.mark.parametrize('argv, world, gui, umn, ignored', [

@@ -6,7 +6,7 @@ import pytest
 from nav_msgs.msg import OccupancyGrid, Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
-from stage_lite import map_msg, wire
+from stage_lite.node import map_msg, wire
 from tf2_msgs.msg import TFMessage
 
 TOL = 1e-12  # float64 fields round-trip exactly; float32 ones are compared with approx below

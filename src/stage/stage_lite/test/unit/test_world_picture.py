@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 from course_common.save_image import write_png
-from stage_lite import world_picture as picture
-from stage_lite.world_picture import RangerView, RobotView, Trails
+from stage_lite.node import world_picture as picture
+from stage_lite.node.world_picture import RangerView, RobotView, Trails
 
 TOL = 1e-9  # m / px: plain affine maps
 

@@ -1,7 +1,7 @@
-"""stage_lite.world_view: the trails and robot views the window and ~save_image draw from."""
+"""stage_lite.node.world_view: the trails and robot views the window and ~save_image draw from."""
 import numpy as np
 from stage_lite.model.world import load_world
-from stage_lite.world_view import WorldView
+from stage_lite.node.world_view import WorldView
 
 WORLD = '''resolution 0.02
 interval_sim 100

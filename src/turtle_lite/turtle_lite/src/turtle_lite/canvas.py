@@ -9,7 +9,7 @@ with a non-antialiased QPainter) closely enough that ``color_sensor`` behaves th
   square cap). Across the line the band is half-open, so exactly ``w`` rows are covered
   by an axis-aligned line. With this rule the fraction of colour samples that read the pen
   colour under a turtle moving along +x at 1, 1.5, 2 and 2.5 m/s is 0.78, 0.42, 0.06 and 0,
-  which is what the real node measured (19/25, 10/25, 1/25, 0/25; TURTLESIM.md 1.7).
+  which is what the real node measured (19/25, 10/25, 1/25, 0/25 colour samples).
 * Sampling uses Qt's ``QPointF::toPoint()`` rounding: floor(v + 0.5).
 
 Canvas coordinates are screen pixels: column = 45 * x, row = 45 * y_s (y_s points down).

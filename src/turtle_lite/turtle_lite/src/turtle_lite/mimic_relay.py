@@ -1,6 +1,6 @@
 """mimic's relay rules (no ROS): which topics it connects, and the pose -> command copy.
 
-Mirrors turtlesim's mimic (TURTLESIM.md 1.13); the node in mimic.py subscribes and publishes.
+Mirrors turtlesim's mimic (tutorials/mimic.cpp); the node in mimic.py subscribes and publishes.
 """
 
 import math
@@ -17,7 +17,8 @@ def mimic_topics(namespace, node_name, mappings):
     """Full names of (input/pose, output/cmd_vel), resolved as roscpp's NodeHandles do.
 
     turtlesim's mimic creates NodeHandles "input" and "output", so a remap of the namespace
-    itself (`input:=turtlesim1/turtle1`) moves the topics under it (TURTLESIM.md 1.9/1.13).
+    itself (`input:=turtlesim1/turtle1`) moves the topics under it (roscpp's namespace
+    resolution, namespaces.py).
     namespace is the node's namespace, node_name its full name, mappings the command-line
     from:=to pairs. Raises ValueError for an invalid remapped name.
     """

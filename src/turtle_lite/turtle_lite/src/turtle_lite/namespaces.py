@@ -1,7 +1,7 @@
 """Where a turtle's topics and services live: roscpp NodeHandle resolution (no rospy).
 
 turtlesim gives each turtle ``ros::NodeHandle(name)`` and creates its six resources relative
-to it (TURTLESIM.md 1.9). roscpp resolves that namespace like this:
+to it (turtle.cpp's Turtle constructor). roscpp resolves that namespace like this:
 
 1. a name starting with ``~`` is first resolved against the node name and remapped;
 2. the name is validated; a relative name is appended to the node's namespace; the result is

@@ -1,7 +1,7 @@
 """turtle_teleop_key's key mapping: one input byte -> (linear_x, angular_z), no ROS.
 
-Mirrors turtlesim's teleop (TURTLESIM.md 1.11); the node in turtle_teleop_key_node.py reads
-the bytes and publishes the Twists.
+Mirrors turtlesim's teleop (tutorials/teleop_turtle_key.cpp); the node in
+turtle_teleop_key_node.py reads the bytes and publishes the Twists.
 """
 
 from dataclasses import dataclass

@@ -84,7 +84,7 @@ class TurtleSimNode:
         self._reset_pool = None  # handles a reset may give back to the new turtle1
         self.tick_count = 0
 
-        # turtlesim's start-up order (TURTLESIM.md 1.5).
+        # turtlesim's start-up order (turtle_frame.cpp's TurtleFrame constructor).
         ensure_background_params()
         self.world = World(read_background())
         self._node_services = [

@@ -2,8 +2,9 @@
 
 No rospy and no clock reads: the caller passes the wall time of each tick. Units are metres,
 radians, seconds. Internally, like turtlesim, y is screen-style pointing down:
-``y_s = H - y`` (TURTLESIM.md 1.4, 1.6). Turtles are kept sorted by name, which is
-turtlesim's ``std::map`` order, so wall warnings and trails come in the same order.
+``y_s = H - y`` (turtlesim 0.10's turtle.cpp, ``Turtle::update``). Turtles are kept sorted
+by name, which is turtlesim's ``std::map`` order, so wall warnings and trails come in the
+same order.
 """
 
 import math

@@ -86,7 +86,7 @@ def test_sample_rounds_and_clips():
 @pytest.mark.parametrize('speed, low, high', [(1.0, 17, 22), (1.5, 8, 13), (2.0, 0, 3),
                                               (2.5, 0, 0), (3.0, 0, 0)])
 def test_colour_sensor_while_moving_matches_turtlesim_table(speed, low, high):
-    """TURTLESIM.md 1.7: 25 samples heading +x with pen width 3 read the pen colour 19, 10,
+    """The real node's figure: 25 samples heading +x with pen width 3 read the pen colour 19, 10,
     1 and 0 times at 1, 1.5, 2 and >= 2.5 m/s."""
     world = World()
     world.add_turtle('turtle1', 1.0, SPAWN_M, 0.0)

@@ -10,7 +10,7 @@ from turtle_lite.mimic_relay import mimic_topics, pose_to_command
     ("namespace", "node_name", "mappings", "expected"),
     [
         ("/", "/turtle_mimic", {}, ("/input/pose", "/output/cmd_vel")),
-        # The ROS wiki usage with multisim.launch (TURTLESIM.md 1.13).
+        # The ROS wiki usage with multisim.launch.
         ("/", "/turtle_mimic",
          {"input": "turtlesim1/turtle1", "output": "turtlesim2/turtle1"},
          ("/turtlesim1/turtle1/pose", "/turtlesim2/turtle1/cmd_vel")),

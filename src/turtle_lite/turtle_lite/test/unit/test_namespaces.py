@@ -1,4 +1,4 @@
-"""Unit tests of turtle_lite.namespaces: roscpp NodeHandle resolution (TURTLESIM.md 1.9)."""
+"""Unit tests of turtle_lite.namespaces: roscpp NodeHandle resolution."""
 
 import pytest
 from turtle_lite.namespaces import (

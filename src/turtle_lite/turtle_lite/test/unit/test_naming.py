@@ -5,7 +5,7 @@ from turtle_lite.naming import NameCounter
 
 def test_counter_example_from_turtlesim():
     """turtle1 alive, spawn turtle3, then '' gives turtle2, '' gives turtle4, kill turtle2,
-    '' gives turtle5 (TURTLESIM.md 1.8)."""
+    '' gives turtle5 (turtle_frame.cpp's spawnTurtle)."""
     counter = NameCounter()
     alive = {counter.next_name(set())}
     assert alive == {'turtle1'}

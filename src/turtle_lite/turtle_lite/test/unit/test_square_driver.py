@@ -9,7 +9,7 @@ from turtle_lite.square_driver import PI, SquareDriver, State
 
 CENTRE = 5.5444446  # turtlesim's turtle1 start, float32
 DT = 0.016
-P = 3.14159265  # the simulator's normalisation literal (TURTLESIM.md 1.6)
+P = 3.14159265  # the simulator's normalisation literal (turtle.cpp)
 
 
 def f32(value):
@@ -53,7 +53,7 @@ def run_square(ticks):
 
 
 def test_first_goals_match_turtlesims_log():
-    # TURTLESIM.md 1.12 [verified]: the real draw_square logs these first three goals.
+    # the real draw_square logs these first three goals.
     # Printed with %f, so they agree to the last printed digit (tolerance 2e-6).
     goals = [e for e in run_square(800) if e.startswith("New goal")]
     expected = [(7.544445, 5.544445, 0.0), (7.448444, 5.544445, 1.570796),

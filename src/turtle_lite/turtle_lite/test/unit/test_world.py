@@ -1,4 +1,4 @@
-"""Unit tests of turtle_lite.world: turtlesim's per-tick update (TURTLESIM.md 1.6, Part 3)."""
+"""Unit tests of turtle_lite.world: turtlesim's per-tick update (turtle.cpp's Turtle::update)."""
 
 import math
 

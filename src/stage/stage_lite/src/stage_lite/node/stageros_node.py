@@ -10,7 +10,9 @@ Per robot (``/robot_<N>/...`` with several robots or -u, relative with one):
               base_pose_ground_truth (nav_msgs/Odometry): world pose, finite-difference twist;
               base_scan, or base_scan_<k> with several rangers (sensor_msgs/LaserScan;
               base_scan_<k> is absolute even for one robot: /base_scan_0);
-              all queue 10, every step, stamped with sim time;
+              every step, stamped with sim time (stage_ros queues 10 per subscriber;
+              here each step's frames are written at once, and a subscriber that cannot
+              take one whole loses that message, as with a full roscpp queue);
               stall (std_msgs/Bool, latched, on change) with ~publish_stall only.
 Global:
   Publishes   /clock (rosgraph_msgs/Clock) every step, never 0; /tf (tf2_msgs/TFMessage) every
@@ -147,7 +149,7 @@ class WorldLoader(threading.Thread):
         self.error = None
 
     def run(self):
-        from .model.world import (  # numpy and the model after the command line
+        from ..model.world import (  # numpy and the model after the command line
             WorldError,
             load_world,
         )
