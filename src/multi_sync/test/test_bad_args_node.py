@@ -26,7 +26,8 @@ CASES = [
     (['move_robot', '-1'], ROBOT_ID_RANGE),
     (['move_robot', 'one'], ROBOT_ID_RANGE),
     (['move_robot', '1.0'], ROBOT_ID_RANGE),
-    # move_robot_sync: the lesson's name for the same node (multi_sync.launch starts it)
+    # move_robot_sync: the Stage lesson's name for the node, on Stage's inputs only
+    # (multi_sync.launch starts it)
     (['move_robot_sync'], 'You must specify robot id.'),
     (['move_robot_sync', '20'], ROBOT_ID_RANGE),
     (['move_robot_sync', '-1'], ROBOT_ID_RANGE),
@@ -38,6 +39,8 @@ CASES = [
     (['move_robot', '1', '_min_gap_m:=far'], "parameter ~min_gap_m = 'far'"),
     (['move_robot', '1', '_world_size_m:=0.5'], 'parameters ~stop_distance_m and ~world_size_m'),
     (['move_robot_sync', '1', '_stop_distance_m:=-0.5'], 'parameter ~stop_distance_m = -0.5'),
+    # the Stage lesson's robot: bounded by a laser's reach (100 m), not turtlesim's square
+    (['move_robot_sync', '1', '_stop_distance_m:=150'], 'parameter ~stop_distance_m = 150'),
     (['move_robot', '1', '_cone_half_angle_rad:=0'], 'parameter ~cone_half_angle_rad = 0'),
     (['move_robot', '1', '_cone_half_angle_rad:=4.0'], 'parameter ~cone_half_angle_rad = 4.0'),
     (['spawn_team', '_team_size:=21'], 'parameter ~team_size = 21'),

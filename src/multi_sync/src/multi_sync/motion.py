@@ -125,7 +125,8 @@ class DriveLimits:
 
     stop_distance_m and min_gap_m of 0 turn the bumper and the gap off: the robot drives on
     until the simulator stops it (turtlesim clamps it at the wall, Stage stalls it).
-    world_size_m is turtlesim's square, which bounds the bumper distance.
+    world_size_m is turtlesim's square, which bounds the bumper distance; None on Stage,
+    where the laser measures what is ahead and no square bounds it.
     """
 
     speed_mps: float = 0.2
@@ -135,14 +136,16 @@ class DriveLimits:
 
     def __post_init__(self):
         _check_finite(speed_mps=self.speed_mps, stop_distance_m=self.stop_distance_m,
-                      min_gap_m=self.min_gap_m, world_size_m=self.world_size_m)
+                      min_gap_m=self.min_gap_m)
+        if self.world_size_m is not None:
+            _check_finite(world_size_m=self.world_size_m)
         if self.speed_mps <= 0.0:
             raise ValueError('speed_mps must be > 0, got %r' % self.speed_mps)
         if self.stop_distance_m < 0.0:
             raise ValueError('stop_distance_m must be >= 0, got %r' % self.stop_distance_m)
         if self.min_gap_m < 0.0:
             raise ValueError('min_gap_m must be >= 0, got %r' % self.min_gap_m)
-        if not self.stop_distance_m * 2.0 < self.world_size_m:
+        if self.world_size_m is not None and not self.stop_distance_m * 2.0 < self.world_size_m:
             raise ValueError('stop_distance_m must be less than half the world (%r m), got %r'
                              % (self.world_size_m, self.stop_distance_m))
 

@@ -15,7 +15,7 @@ from geometry_msgs.msg import Twist
 
 from multi_sync.motion import WORLD_SIZE_M, Decision, DriveLimits, TeamPositions, decide
 from multi_sync.msg import RobotPosition, RobotStatus
-from multi_sync.robot_sensors import TURTLESIM, RobotSensors
+from multi_sync.robot_sensors import STAGE, TURTLESIM, RobotSensors
 from multi_sync.team import MONITOR_FRAME_ID
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
@@ -41,6 +41,9 @@ class MoveRobotConfig:
     report_period_s: float = 5.0
 
 
+#: On Stage, the bumper and the gap are bounded by what a laser can see, not by a square.
+STAGE_MAX_DISTANCE_M = 100.0
+
 # name: (lowest, highest, lowest allowed?) for each parameter; every one must be finite.
 _RANGES = {
     'speed_mps': (0.0, 10.0, False),
@@ -55,13 +58,23 @@ _RANGES = {
 }
 
 
-def load_config(get_param=rospy.get_param):
-    """Read and check the private parameters; raise ValueError (ParamError) naming the bad one."""
+def load_config(get_param=rospy.get_param, simulator=None):
+    """Read and check the private parameters; raise ValueError (ParamError) naming the bad one.
+
+    simulator STAGE (the Stage lesson's move_robot_sync): the distances are bounded by
+    STAGE_MAX_DISTANCE_M instead of turtlesim's square, and ~world_size_m is not read."""
+    ranges = dict(_RANGES)
+    if simulator == STAGE:
+        del ranges['world_size_m']
+        ranges['stop_distance_m'] = (0.0, STAGE_MAX_DISTANCE_M, True)
+        ranges['min_gap_m'] = (0.0, STAGE_MAX_DISTANCE_M, True)
     values = {}
-    for name, (low, high, low_ok) in _RANGES.items():
+    for name, (low, high, low_ok) in ranges.items():
         values[name] = check_number('~' + name,
                                     get_param('~' + name, getattr(MoveRobotConfig, name)),
                                     low, high, low_open=not low_ok)
+    if simulator == STAGE:
+        values['world_size_m'] = None
     config = MoveRobotConfig(**values)
     try:
         DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
@@ -86,12 +99,13 @@ class MoveRobotNode:
     """One robot of the team: ready, wait for GO, then forward until a wall or teammate.
 
     The robot runs on turtlesim or on Stage, whichever publishes its pose
-    (multi_sync.robot_sensors). It is ready once it knows its pose and, on Stage, what its
-    laser sees. It then publishes its ready status at once, again every announce_period_s
-    until GO, and to every team_status subscriber that connects (so a monitor started or
-    restarted at any time counts it). GO is any team_status message with header.frame_id
-    "monitor": the first one starts the 10 Hz drive loop and sends the first command from the
-    callback itself.
+    (multi_sync.robot_sensors); move_robot_sync, the Stage lesson's executable, runs on Stage
+    only (simulator=STAGE: no turtlesim topic, no square world). It is ready once it knows
+    its pose and, on Stage, what its laser sees. It then publishes its ready status at once,
+    again every announce_period_s until GO, and to every team_status subscriber that
+    connects (so a monitor started or restarted at any time counts it). GO is any
+    team_status message with header.frame_id "monitor": the first one starts the 10 Hz drive
+    loop and sends the first command from the callback itself.
 
     Subscribes:
         robot_<id>/pose (turtlesim/Pose): the robot's pose on turtlesim; the bumper measures
@@ -121,12 +135,14 @@ class MoveRobotNode:
             every 5 s) while the pose or, on Stage, the scan has been silent this long: the
             bumper must not drive on what it saw seconds ago (a simulator that died, a
             network cut). 0 disables.
-        ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's).
+        ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's); not read
+            by move_robot_sync, the Stage lesson's robot, whose bumper and gap are bounded by
+            STAGE_MAX_DISTANCE_M (100 m) instead.
         ~announce_period_s (float, 1.0 s): ready re-announcement period until GO.
         ~report_period_s (float, 5.0 s): how often the nearest teammate is logged.
     """
 
-    def __init__(self, robot_id, config):
+    def __init__(self, robot_id, config, simulator=None):
         self._id = robot_id
         self._cfg = config
         self._limits = DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
@@ -142,7 +158,7 @@ class MoveRobotNode:
         self._stopped = False  # shutting down: no more commands but the final stop
         self._deferred = []  # log lines held back from the GO callback until the first tick
         self._sensors = RobotSensors(robot_id, config.cone_half_angle_rad, config.world_size_m,
-                                     self._on_ready)
+                                     self._on_ready, simulator)
         # Synchronous: the first command leaves within the GO callback, the final stop
         # before the process exits.
         self._cmd_pub = unqueued_publisher('robot_%d/cmd_vel' % robot_id, Twist)
@@ -313,11 +329,12 @@ class MoveRobotNode:
             self._cmd_pub.publish(Twist())
 
 
-def main(argv=None):
-    """rosrun multi_sync move_robot ROBOT_ID."""
+def main(argv=None, simulator=None):
+    """rosrun multi_sync move_robot ROBOT_ID (either simulator), or move_robot_sync ROBOT_ID
+    (the Stage lesson's: simulator=STAGE)."""
     robot_id = parse_argv_or_exit(parse_robot_id, argv)
     init_node('move_robot_%d' % robot_id)
-    config = load_or_exit(load_config, 'move_robot')
+    config = load_or_exit(lambda: load_config(simulator=simulator), 'move_robot')
     rospy.loginfo('Robot %d: %s', robot_id, config)
-    MoveRobotNode(robot_id, config)
+    MoveRobotNode(robot_id, config, simulator)
     rospy.spin()

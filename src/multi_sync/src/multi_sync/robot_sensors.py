@@ -8,7 +8,6 @@ from course_common.angles import yaw_from_quaternion
 from course_common.finite import is_finite_number
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
-from turtlesim.msg import Pose
 
 from multi_sync.laser_ahead import nearest_ahead_m
 from multi_sync.motion import distance_to_wall
@@ -38,7 +37,9 @@ class Fix:
 class RobotSensors:
     """The robot's pose and the free distance ahead, from whichever simulator runs the robot.
 
-    The first pose to arrive names the simulator; the other inputs are unsubscribed.
+    The first pose to arrive names the simulator; the other inputs are unsubscribed. A robot
+    told its simulator (simulator=STAGE: the Stage lesson's move_robot_sync) subscribes to
+    that simulator's inputs only, and never loads turtlesim's messages.
 
     Subscribes (relative names: namespaces and remaps apply):
         robot_<id>/pose (turtlesim/Pose): turtlesim's pose; the free distance ahead is the
@@ -51,25 +52,32 @@ class RobotSensors:
             world the beams pass above the other robots: it sees walls, not teammates.
     """
 
-    def __init__(self, robot_id, cone_half_angle_rad, world_size_m, on_ready):
+    def __init__(self, robot_id, cone_half_angle_rad, world_size_m, on_ready, simulator=None):
         """on_ready() is called once, from a subscriber's thread, when fix() is first known.
+        simulator: TURTLESIM or STAGE if known (then world_size_m only matters on turtlesim),
+        None to take the first pose's.
 
         Nothing is subscribed until subscribe() (a node subscribes last)."""
+        if simulator not in (None, TURTLESIM, STAGE):
+            raise ValueError('simulator must be %r, %r or None, got %r'
+                             % (TURTLESIM, STAGE, simulator))
         self._id = robot_id
         self._cone_rad = cone_half_angle_rad
         self._world_size_m = world_size_m
         self._on_ready = on_ready
         self._lock = threading.Lock()
-        self._simulator = None
+        self._simulator = simulator
         self._pose = None        # (x, y, theta)
         self._scan_ahead = None  # m, from the latest scan
         self._heard = {}         # input name -> time.monotonic() of its latest message
         self._ready = False
         self._inputs = {
-            'pose': (Pose, self._on_turtle_pose),
             'base_pose_ground_truth': (Odometry, self._on_ground_truth),
             'base_scan': (LaserScan, self._on_scan),
         }
+        if simulator != STAGE:
+            from turtlesim.msg import Pose  # only where turtlesim may run the robot
+            self._inputs['pose'] = (Pose, self._on_turtle_pose)
         self._subs = {}
         self._subscribed_at = 0.0
 
@@ -90,8 +98,9 @@ class RobotSensors:
             if self._fix_locked() is not None:
                 return ''
             if self._pose is None:
-                return 'no pose yet on %s or %s' % (self._resolved('pose'),
-                                                    self._resolved('base_pose_ground_truth'))
+                return 'no pose yet on %s' % ' or '.join(
+                    self._resolved(name) for name in ('pose', 'base_pose_ground_truth')
+                    if name in self._inputs)
             return 'no scan yet on %s' % self._resolved('base_scan')
 
     def stale(self, timeout_s):
@@ -161,8 +170,8 @@ class RobotSensors:
                        % (simulator, x, y, theta))
             return
         with self._lock:
-            first = self._simulator is None
-            if first:
+            first = self._pose is None
+            if self._simulator is None:
                 self._simulator = simulator
             elif self._simulator != simulator:
                 return  # a pose of the other simulator's kind, arriving as it is dropped

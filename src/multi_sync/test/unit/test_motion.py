@@ -102,6 +102,13 @@ def test_drive_limits_reject_bad_values(kwargs):
         DriveLimits(**kwargs)
 
 
+def test_on_stage_no_square_bounds_the_bumper():
+    # world_size_m None: Stage's laser measures what is ahead; 6 m is beyond turtlesim's half
+    assert DriveLimits(stop_distance_m=6.0, world_size_m=None).stop_distance_m == 6.0
+    with pytest.raises(ValueError):
+        DriveLimits(stop_distance_m=math.nan, world_size_m=None)
+
+
 def _team(own_id, *mates):
     team = TeamPositions(own_id)
     for robot_id, x, y in mates:
