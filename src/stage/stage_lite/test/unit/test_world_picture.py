@@ -53,14 +53,48 @@ def test_render_draws_robot_beams_and_trail_in_colour():
                       color=(0.0, 0.0, 1.0),
                       rangers=(RangerView((0.05, 0.0, 0.0), angles, np.full(31, 0.8)),),
                       trail=np.array([[-0.9, -0.9], [-0.5, -0.9]]))
-    image = np.asarray(picture.render(view, base, [robot]))
+    image = np.asarray(picture.render(view, base, [robot])).astype(int)
     assert np.array_equal(np.asarray(base), np.asarray(picture.floor_image(view, occ)))
     (cx, cy), = view.to_px([(-0.1, 0.1)]).astype(int).tolist()
     assert tuple(image[cy, cx]) == (0, 0, 255)                      # body
     (bx, by), = view.to_px([(0.6, 0.0)]).astype(int).tolist()
-    assert tuple(image[by, bx]) == picture._rgb255((0, 0, 1), picture.BEAM_TINT)  # beams
+    alpha = round(picture.FAN_ALPHA * 255) / 255    # Pillow blends in whole steps of 1/255
+    assert np.abs(image[by, bx] - np.array([255 * (1 - alpha)] * 2 + [255])).max() <= 1  # fan
     (tx, ty), = view.to_px([(-0.7, -0.9)]).astype(int).tolist()
     assert tuple(image[ty, tx]) == (0, 0, 255)                      # trail
+
+
+def test_four_overlapping_fans_stay_four_fans():
+    # The lesson's hall: four robots whose fans overlap. Each fan is its robot's colour laid
+    # over the floor, not an opaque area: a pixel only robot k sees is tinted k's colour, a
+    # pixel two fans share shows both, and a wall under a fan stays darker than the free floor.
+    occ = _room()
+    view = picture.fit_view(picture.world_bounds(occ), 400, 400)
+    base = picture.floor_image(view, occ)
+    colors = [(0, 0, 1.0), (1.0, 0, 0), (0, 1.0, 0), (1.0, 0, 1.0)]
+    angles = np.linspace(-0.3, 0.3, 21)
+    # 0 and 2 face each other (their fans share x in [-0.2, 0.2]); 1 and 3 face the walls
+    poses = [(-0.8, 0.5, 0.0), (-0.7, -0.5, math.pi), (0.8, 0.5, math.pi), (0.7, -0.5, 0.0)]
+    robots = [RobotView(pose=p, size=(0.1, 0.1), origin=(0.0, 0.0), color=c,
+                        rangers=(RangerView((0.0, 0.0, 0.0), angles, np.full(21, 1.0)),))
+              for p, c in zip(poses, colors, strict=True)]
+    image = np.asarray(picture.render(view, base, robots)).astype(int)
+    floor = np.asarray(base).astype(int)
+
+    def at(x, y):
+        (px, py), = view.to_px([(x, y)]).astype(int).tolist()
+        return image[py, px], floor[py, px]
+    alpha = round(picture.FAN_ALPHA * 255) / 255    # Pillow blends in whole steps of 1/255
+    for (x, y, yaw), color in zip(poses, colors, strict=True):
+        pixel, below = at(x + 0.25 * math.cos(yaw), y)        # in front of it: its fan only
+        expected = below + alpha * (np.array(color) * 255 - below)
+        assert np.abs(pixel - expected).max() <= 1, (pixel, expected)
+    shared, below = at(0.0, 0.5)              # robots 0 (blue), then 2 (green): both fans
+    blue = below + alpha * (np.array([0, 0, 255]) - below)
+    expected = blue + alpha * (np.array([0, 255, 0]) - blue)
+    assert np.abs(shared - expected).max() <= 2, (shared, expected)
+    wall, below = at(-0.99, -0.5)             # the west wall, under robot 1's fan
+    assert (wall < 128).all() and wall.tolist() != below.tolist()
 
 
 def test_footprint_follows_origin_and_yaw():
