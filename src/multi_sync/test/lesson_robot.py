@@ -7,19 +7,23 @@ that arrives after another, before the next spin, replaces it. It logs the lesso
 and, on GO, "Robot ID: Team is ready. Let's move!"; it drives nothing.
 
 One difference, for the test's sake: after the lesson's 1 s sleep it also waits (at most
-CONNECT_WAIT_S) until the monitor and its TEAM_SIZE - 1 teammates are subscribed, so that
-its ready is never lost (the lesson's known fragility) and reaches every teammate: the case
-in which a GO sent too early is overtaken by a teammate's ready.
+CONNECT_WAIT_S) until the monitor and its TEAM_SIZE - 1 teammates have been connected to its
+publisher for STABLE_S without a break, so that its ready is not lost (the lesson's known
+fragility: rospy, loaded, sometimes drops a new connection and makes it again a moment later)
+and reaches every teammate: the case in which a GO sent too early is overtaken by a
+teammate's ready.
 """
 import sys
 import threading
 import time
 
 import rospy
+from course_common.rospy_internals import connection_ids
 
 from multi_sync.msg import RobotStatus
 
-CONNECT_WAIT_S = 20.0
+CONNECT_WAIT_S = 40.0
+STABLE_S = 1.0
 SPIN_PERIOD_S = 1.0
 
 
@@ -47,8 +51,18 @@ def main():
     pub = rospy.Publisher('team_status', RobotStatus, queue_size=10)
     rospy.Subscriber('team_status', RobotStatus, queue.put, queue_size=1)
     time.sleep(1.0)  # the lesson's "wait for the publisher to connect"
+    ns = rospy.get_namespace()
+    listeners = {ns + 'monitor'} | {ns + 'move_robot_%d' % i for i in range(team_size)
+                                    if i != robot_id}
     deadline = time.monotonic() + CONNECT_WAIT_S
-    while pub.get_num_connections() < team_size and time.monotonic() < deadline:
+    since = None
+    while time.monotonic() < deadline:
+        if listeners <= connection_ids(pub):
+            since = since or time.monotonic()
+            if time.monotonic() - since >= STABLE_S:
+                break
+        else:
+            since = None
         time.sleep(0.01)
     ready = RobotStatus()
     ready.header.stamp = rospy.Time.now()

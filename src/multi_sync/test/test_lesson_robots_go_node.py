@@ -58,8 +58,12 @@ class TestLessonRobotsGo(unittest.TestCase):
         return monitor, robots
 
     def _check_team(self, run, monitor, robots):
-        wait_for(lambda: monitor.printed('All robots GO!'), START_S,
-                 'run %d: the monitor to say GO' % run)
+        try:
+            wait_for(lambda: monitor.printed('All robots GO!'), START_S,
+                     'run %d: the monitor to say GO' % run)
+        except WaitError as err:
+            self.fail('%s: monitor %s; robots %s' % (err, monitor.lines(),
+                                                     [r.lines()[-3:] for r in robots]))
 
         def waiting():
             return [i for i, r in enumerate(robots)

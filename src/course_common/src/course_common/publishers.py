@@ -1,7 +1,12 @@
-"""Publishers without a send queue, through rospy's public API."""
+"""Publishers without a send queue, through rospy's public API; a publisher's lost
+subscribers found and given the publisher again (LostSubscribers)."""
+import time
 import warnings
 
+import rosgraph
 import rospy
+
+from course_common.rospy_internals import connection_ids
 
 #: The start of the SyntaxWarning rospy gives for a Publisher made without queue_size.
 QUEUE_SIZE_WARNING = "The publisher should be created with an explicit keyword argument"
@@ -21,3 +26,57 @@ def unqueued_publisher(name, data_class, **kwargs):
     with warnings.catch_warnings():
         warnings.filterwarnings('ignore', message=QUEUE_SIZE_WARNING, category=SyntaxWarning)
         return rospy.Publisher(name, data_class, queue_size=None, **kwargs)
+
+
+def still_unconnected(listed, connected, own_name, earlier):
+    """The subscribers the master lists for a topic (listed) that are not connected to this
+    node's publisher (connected: their caller ids), now and at the check before (earlier):
+    one missed check is a subscriber still connecting, two are a lost connection. Pure."""
+    missing = set(listed) - set(connected) - {own_name}
+    return missing & set(earlier)
+
+
+class LostSubscribers:
+    """Heals a publisher that a subscriber never connected to.
+
+    The master tells a subscriber about a new publisher once (publisherUpdate), and rospy
+    neither retries a lost call nor a connection that failed under load: the subscriber then
+    never hears the publisher. team20 saw it: turtlesim never connected to one robot's
+    cmd_vel, and that robot never moved. check(), called regularly (at most every period_s
+    does anything), compares the master's subscribers of the topic with the publisher's
+    connections; a subscriber missing twice in a row gets the publisher registered again,
+    which makes the master send every subscriber the publisher list once more.
+    """
+
+    def __init__(self, pub, period_s=5.0, describe='%s'):
+        """pub: a rospy Publisher; describe: the WARN's format, '%s' the text (e.g. a robot's
+        'Robot 3: %s')."""
+        self.pub = pub
+        self.period_s = period_s
+        self.describe = describe
+        self._checked_at = time.monotonic()
+        self._missing = set()
+
+    def check(self):
+        """Returns the subscribers it registered the publisher again for (empty if none)."""
+        now = time.monotonic()
+        if now - self._checked_at < self.period_s:
+            return set()
+        self._checked_at = now
+        name = rospy.get_name()
+        topic = self.pub.resolved_name
+        try:
+            master = rosgraph.Master(name)
+            _, subscribers, _ = master.getSystemState()
+            listed = next((nodes for t, nodes in subscribers if t == topic), [])
+            lost = still_unconnected(listed, connection_ids(self.pub), name, self._missing)
+            self._missing = set(listed) - connection_ids(self.pub) - {name}
+            if lost:
+                master.registerPublisher(topic, self.pub.type, rospy.get_node_uri())
+                rospy.logwarn(self.describe % ('%s subscribe to %s but never connected: '
+                                               'registered it again'
+                                               % (', '.join(sorted(lost)), topic)))
+        except (OSError, rosgraph.MasterError) as err:
+            rospy.logdebug('publisher check of %s: %s', topic, err)
+            return set()
+        return lost

@@ -3,6 +3,7 @@ import subprocess
 import sys
 
 import pytest
+from course_common.publishers import still_unconnected
 
 RUN_TIMEOUT_S = 60.0  # a fresh interpreter importing rospy; generous on a loaded machine
 
@@ -44,3 +45,14 @@ def test_a_bad_option_is_rospys_error():
                 'unqueued_publisher("/unqueued", String, no_such_option=1)\n')
     assert done.returncode != 0
     assert "unexpected keyword argument 'no_such_option'" in done.stderr
+
+
+@pytest.mark.parametrize('listed, connected, earlier, lost', [
+    ({'/a', '/b'}, {'/a', '/b'}, set(), set()),          # everyone connected
+    ({'/a', '/b'}, {'/a'}, set(), set()),                # /b missing once: still connecting
+    ({'/a', '/b'}, {'/a'}, {'/b'}, {'/b'}),              # missing twice: lost
+    ({'/a'}, {'/a'}, {'/b'}, set()),                     # /b gone from the master
+    ({'/me', '/b'}, set(), {'/me', '/b'}, {'/b'}),       # this node's own subscription
+])
+def test_still_unconnected(listed, connected, earlier, lost):
+    assert still_unconnected(listed, connected, '/me', earlier) == lost

@@ -8,7 +8,7 @@ import rospy
 from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
 from course_common.params import check_number
-from course_common.publishers import unqueued_publisher
+from course_common.publishers import LostSubscribers, unqueued_publisher
 from course_common.robot_ids import parse_robot_id
 from course_common.startup import init_node
 from geometry_msgs.msg import Twist
@@ -162,6 +162,8 @@ class MoveRobotNode:
         # Synchronous: the first command leaves within the GO callback, the final stop
         # before the process exits.
         self._cmd_pub = unqueued_publisher('robot_%d/cmd_vel' % robot_id, Twist)
+        # A simulator that missed this publisher would never move the robot (team20, once).
+        self._cmd_lost = LostSubscribers(self._cmd_pub, describe='Robot %d: %%s' % robot_id)
         self._pos_pub = rospy.Publisher('team_positions', RobotPosition, queue_size=10)
         self._status_pub = rospy.Publisher('team_status', RobotStatus, queue_size=10,
                                            subscriber_listener=_AnnounceOnConnect(self))
@@ -202,6 +204,7 @@ class MoveRobotNode:
             go = self._go
         if go:
             return
+        self._cmd_lost.check()
         missing = self._sensors.missing()
         if missing:
             rospy.logwarn_throttle(5.0, 'Robot %d: %s' % (self._id, missing))
@@ -235,8 +238,9 @@ class MoveRobotNode:
             logs.extend(self._command_locked())
             logs.extend(self._share_locked())
         self._log(logs)
-        # Outside the lock: subscribing talks to the master.
+        # Outside the lock: these talk to the master.
         self._sensors.resubscribe_if_silent(self._cfg.input_timeout_s)
+        self._cmd_lost.check()
 
     def _command_locked(self):
         """Command the robot from its latest fix; return the log lines for after the lock."""

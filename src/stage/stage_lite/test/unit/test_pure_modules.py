@@ -14,7 +14,7 @@ MODEL = sorted('stage_lite.model.' + name[:-3]
 # The node's pure helpers: the glue modules (stageros_node, step_loop, ...) import rospy.
 HELPERS = ['stage_lite.node.' + name for name in (
     'map_msg', 'names', 'pacing', 'stageros_args', 'wire', 'world_picture', 'world_view')] \
-    + ['stage_lite.testing.golden']
+    + ['stage_lite.testing.golden', 'stage_lite.testing.room']
 CHECK = ('import importlib, sys; importlib.import_module(sys.argv[1]); '
          "print(sorted(m for m in ('rospy', 'genpy', 'rosgraph') if m in sys.modules))")
 

@@ -8,6 +8,7 @@ import math
 import pytest
 from stage_lite.model.pose import pose_add, stage_normalize
 from stage_lite.model.world import WorldError, load_world
+from stage_lite.testing.room import write_room_pgm
 
 ROOM = '''resolution 0.02
 interval_sim 100
@@ -23,12 +24,7 @@ bot( pose [%(bx)s 0 0 180] name "b" color "gray30" size [0.4 0.4 %(hb)s] )
 def room_world(tmp_path, h=0.25, hb=0.25, bx=2.0, drive='diff', extra=''):
     """A 10 m square room (0.1 m walls), robot a at the origin facing +x and robot b at
     (bx, 0) facing it."""
-    n = 100
-    img = bytearray(b'\xff' * n * n)
-    for i in range(n):
-        for j in (0, n - 1):
-            img[i * n + j] = img[j * n + i] = 0
-    (tmp_path / 'room.pgm').write_bytes(b'P5 %d %d 255\n' % (n, n) + bytes(img))
+    write_room_pgm(str(tmp_path / 'room.pgm'))
     p = tmp_path / 'room.world'
     p.write_text(ROOM % dict(h=h, hb=hb, bx=bx, drive=drive, extra=extra))
     return load_world(str(p), seed=3)

@@ -2,6 +2,7 @@
 import numpy as np
 from stage_lite.model.world import load_world
 from stage_lite.node.world_view import WorldView
+from stage_lite.testing.room import write_room_pgm
 
 WORLD = '''resolution 0.02
 interval_sim 100
@@ -12,12 +13,7 @@ position( pose [0 0 0 0] size [0.4 0.4 0.25] color "blue"
 
 
 def lesson_like(tmp_path):
-    n = 100
-    img = bytearray(b'\xff' * n * n)
-    for i in range(n):
-        for j in (0, n - 1):
-            img[i * n + j] = img[j * n + i] = 0
-    (tmp_path / 'room.pgm').write_bytes(b'P5 %d %d 255\n' % (n, n) + bytes(img))
+    write_room_pgm(str(tmp_path / 'room.pgm'))
     (tmp_path / 'w.world').write_text(WORLD)
     return load_world(str(tmp_path / 'w.world'))
 
