@@ -29,11 +29,12 @@ def unqueued_publisher(name, data_class, **kwargs):
 
 
 def still_unconnected(listed, connected, own_name, earlier):
-    """The subscribers the master lists for a topic (listed) that are not connected to this
-    node's publisher (connected: their caller ids), now and at the check before (earlier):
-    one missed check is a subscriber still connecting, two are a lost connection. Pure."""
+    """(missing, lost): the subscribers the master lists for a topic (listed) that are not
+    connected to this node's publisher (connected: their caller ids), and those of them that
+    were missing at the check before too (earlier): one missed check is a subscriber still
+    connecting, two are a lost connection. Pure."""
     missing = set(listed) - set(connected) - {own_name}
-    return missing & set(earlier)
+    return missing, missing & set(earlier)
 
 
 class LostSubscribers:
@@ -69,8 +70,8 @@ class LostSubscribers:
             master = rosgraph.Master(name)
             _, subscribers, _ = master.getSystemState()
             listed = next((nodes for t, nodes in subscribers if t == topic), [])
-            lost = still_unconnected(listed, connection_ids(self.pub), name, self._missing)
-            self._missing = set(listed) - connection_ids(self.pub) - {name}
+            self._missing, lost = still_unconnected(listed, connection_ids(self.pub), name,
+                                                    self._missing)
             if lost:
                 master.registerPublisher(topic, self.pub.type, rospy.get_node_uri())
                 rospy.logwarn(self.describe % ('%s subscribe to %s but never connected: '

@@ -47,12 +47,12 @@ def test_a_bad_option_is_rospys_error():
     assert "unexpected keyword argument 'no_such_option'" in done.stderr
 
 
-@pytest.mark.parametrize('listed, connected, earlier, lost', [
-    ({'/a', '/b'}, {'/a', '/b'}, set(), set()),          # everyone connected
-    ({'/a', '/b'}, {'/a'}, set(), set()),                # /b missing once: still connecting
-    ({'/a', '/b'}, {'/a'}, {'/b'}, {'/b'}),              # missing twice: lost
-    ({'/a'}, {'/a'}, {'/b'}, set()),                     # /b gone from the master
-    ({'/me', '/b'}, set(), {'/me', '/b'}, {'/b'}),       # this node's own subscription
+@pytest.mark.parametrize('listed, connected, earlier, missing, lost', [
+    ({'/a', '/b'}, {'/a', '/b'}, set(), set(), set()),      # everyone connected
+    ({'/a', '/b'}, {'/a'}, set(), {'/b'}, set()),           # /b missing once: connecting
+    ({'/a', '/b'}, {'/a'}, {'/b'}, {'/b'}, {'/b'}),         # missing twice: lost
+    ({'/a'}, {'/a'}, {'/b'}, set(), set()),                 # /b gone from the master
+    ({'/me', '/b'}, set(), {'/me', '/b'}, {'/b'}, {'/b'}),  # this node's own subscription
 ])
-def test_still_unconnected(listed, connected, earlier, lost):
-    assert still_unconnected(listed, connected, '/me', earlier) == lost
+def test_still_unconnected(listed, connected, earlier, missing, lost):
+    assert still_unconnected(listed, connected, '/me', earlier) == (missing, lost)
