@@ -80,6 +80,7 @@ try:
     from nav_msgs.msg import Odometry
     from rosmaster.master_api import ROSMasterHandler
     from sensor_msgs.msg import LaserScan
+    from stage_lite.model.worldfile import Worldfile
     from std_srvs.srv import Empty
 except ImportError as import_error:
     sys.exit('capture.py: %s (run it with /usr/bin/python3 after '
@@ -113,13 +114,10 @@ class CaptureError(Exception):
 
 # --- inputs ---------------------------------------------------------------------------------
 def world_interval_ns(world_path):
-    """The world's top-level interval_sim (ms in the file) in ns, else Stage's 100 ms.
-
-    Read from the world file itself (not from its includes); the stamps of the capture are
-    then checked against it."""
-    text = re.sub(r'#[^\n]*', '', Path(world_path).read_text(errors='replace'))
-    match = re.search(r'^\s*interval_sim\s+([-+0-9.eE]+)', text, re.MULTILINE)
-    ms = float(match.group(1)) if match else DEFAULT_INTERVAL_MS
+    """The world's interval_sim (ms in the file) in ns, else Stage's 100 ms, read as Stage
+    reads it (stage_lite.model.worldfile: includes and macros too); the stamps of the
+    capture are then checked against it."""
+    ms = Worldfile(world_path).read_float(0, 'interval_sim', DEFAULT_INTERVAL_MS)
     return int(round(ms * 1e6))
 
 

@@ -12,24 +12,18 @@ ground-truth pose differences (mm, mrad) and odom twist difference; and each cap
 stall steps (a step whose odom twist, the velocity Stage applied, is non-zero while the
 ground-truth pose did not change from the step before) with the steps only one of them
 stalls at.
-Needs numpy only.
+Under /usr/bin/python3 with the workspace sourced (captures are read, and stalls told, by
+stage_lite.testing.golden, as the tests read them).
 """
 import argparse
-import json
 import re
 import sys
 
 import numpy as np
+from stage_lite.testing.golden import load, stall_steps
 
 NEAR_M = 0.05  # "within 5 cm"
 WORST = 5  # beams listed per laser
-
-
-def load(path):
-    """(arrays, meta) of a capture."""
-    with np.load(path) as data:
-        arrays = {k: data[k] for k in data.files if k != 'meta'}
-        return arrays, json.loads(str(data['meta']))
 
 
 def keys_of(arrays, pattern):
@@ -99,14 +93,6 @@ def stale_steps(arrays, robot, scan, rows):
     pose = arrays['r%d_gt_pose' % robot][rows]
     stale = np.all(ranges[1:] == ranges[:-1], axis=1) & np.any(pose[1:] != pose[:-1], axis=1)
     return set(arrays['steps'][rows][1:][stale].tolist())
-
-
-def stall_steps(arrays, robot):
-    """The steps (of arrays['steps']) at which the robot stalled: odom twist non-zero while
-    the ground-truth pose equals the step before's."""
-    twist, pose = arrays['r%d_odom_twist' % robot], arrays['r%d_gt_pose' % robot]
-    stalled = np.any(twist[1:] != 0, axis=1) & np.all(pose[1:] == pose[:-1], axis=1)
-    return set(arrays['steps'][1:][stalled].tolist())
 
 
 def spans(steps):

@@ -12,7 +12,8 @@ service thread): the first step, after the call, at which a robot jumped farther
 velocity takes it in a step. With --embed, the world file and the files of WORLD_DIR it
 names (its bitmaps) go into OUT.npz as they were (`file/NAME` byte arrays, their names in the
 meta's `embedded`): for a world that lives in another package (the lesson's, in stage_multi),
-which stage_lite's tests cannot depend on. Needs numpy only.
+which stage_lite's tests cannot depend on. Under /usr/bin/python3 with the workspace sourced
+(captures are read by stage_lite.testing.golden, as the tests read them).
 """
 import hashlib
 import json
@@ -21,6 +22,7 @@ import re
 import sys
 
 import numpy as np
+from stage_lite.testing.golden import load
 
 
 def reset_step(arrays, meta, robots):
@@ -59,9 +61,7 @@ def embedded_files(world_dir, world_name, sha1):
 def main():
     src, out = sys.argv[1:3]
     embed_dir = sys.argv[sys.argv.index('--embed') + 1] if '--embed' in sys.argv else None
-    with np.load(src) as data:
-        arrays = {k: data[k] for k in data.files}
-    meta = json.loads(str(arrays.pop('meta')))
+    arrays, meta = load(src)
     robots = sorted({int(k[1:k.index('_')]) for k in arrays if k.startswith('r')})
     keep = {'steps': arrays['steps']}
     for key, value in arrays.items():

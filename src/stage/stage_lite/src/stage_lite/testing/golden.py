@@ -109,14 +109,21 @@ def check_poses(gold, frames):
                 assert abs(ours[2] - real[2]) <= YAW_TOL, where
 
 
+def stall_steps(arrays, robot):
+    """The steps (of arrays['steps']) at which a capture's robot stalled: its odom twist (the
+    velocity Stage applied) non-zero while its ground-truth pose equals the step before's
+    (Stage keeps the stall flag of a robot that is not commanded to move)."""
+    twist, pose = arrays['r%d_odom_twist' % robot], arrays['r%d_gt_pose' % robot]
+    stalled = np.any(twist[1:] != 0, axis=1) & np.all(pose[1:] == pose[:-1], axis=1)
+    return set(arrays['steps'][1:][stalled].tolist())
+
+
 def check_stalls(gold, frames):
+    steps = gold['steps']
     for r in range(len(frames[0]['poses'])):
-        gt, twist = gold['r%d_gt_pose' % r], gold['r%d_odom_twist' % r]
-        # a step with the velocity on and the pose unchanged (Stage keeps the stall flag of
-        # a robot that is not commanded to move)
-        real = [row + 1 for row in range(1, len(frames))
-                if twist[row].any() and np.array_equal(gt[row], gt[row - 1])]
-        ours = [row + 1 for row in range(1, len(frames))
+        twist = gold['r%d_odom_twist' % r]
+        real = sorted(stall_steps(gold, r))
+        ours = [int(steps[row]) for row in range(1, len(frames))
                 if twist[row].any() and frames[row]['stalled'][r]]
         assert real == ours, 'robot %d stalls: ours at steps %s, real at %s' % (r, ours, real)
 
