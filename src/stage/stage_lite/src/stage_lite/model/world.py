@@ -34,10 +34,6 @@ __all__ = ['World', 'Robot', 'WorldError', 'load_world']
 #: Top-level properties Stage reads (the GUI ones too: the window is optional here).
 TOP_LEVEL = ('name', 'show_clock', 'show_clock_interval', 'threads', 'paused',
              'confirm_on_quit', 'log')
-WINDOW_PROPS = ('size', 'center', 'rotate', 'scale', 'show_data', 'show_flags', 'show_blocks',
-                'show_clock', 'show_footprints', 'show_grid', 'show_status', 'show_trailarrows',
-                'show_trailrise', 'show_trailfast', 'show_occupancy', 'show_tree',
-                'pcam_on', 'screenshots', 'pcam_loc', 'pcam_angle', 'perspective', 'follow')
 
 
 class RangerView:
