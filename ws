@@ -161,7 +161,14 @@ run_rostest_file() {
   # rostest limits each test node itself (time-limit); the outer timeout catches a hung launch
   # (it signals its own process group: the launch and everything the test started).
   timeout --kill-after=10 600 rostest --results-base-dir="$dir" \
-    "$(package_of "$f")" "$(basename "$f")" >"$dir/rostest.log" 2>&1
+    "$(package_of "$f")" "$(basename "$f")" >"$dir/rostest.log" 2>&1 || return
+  # rostest passes a test node that died before writing its results (an import error, say)
+  # as "0 tests": that is a failure.
+  if grep -q 'results summary: .*, 0 tests$' "$dir/rostest.log"; then
+    echo "ws: a test node of $f ran no test (it died: see its log under ~/.ros/log)" \
+      >>"$dir/rostest.log"
+    return 1
+  fi
 }
 
 # A job of the test steps that run side by side: a .test file, or `multihost` (the multi-host
@@ -194,6 +201,8 @@ test_job_label() {
 run_test_jobs() {
   source_devel
   local_ros_network
+  # No window on the developer's screen: a test that wants one starts its own Xvfb.
+  unset DISPLAY WAYLAND_DISPLAY
   mkdir -p "$RESULTS_DIR"
   # install_space.test installs from this build directory.
   export WS_BUILD_PATH="$ROOT/$BUILD_DIR"

@@ -4,10 +4,13 @@ import math
 import pytest
 from stage_lite.node.pacing import (
     FLAT_OUT,
+    PAUSED_POLL_S,
     Pacer,
     SimClock,
     Watchdog,
     check_speedup,
+    faster,
+    slower,
     world_speedup,
 )
 
@@ -64,6 +67,44 @@ def test_pacer_catches_up_a_little_then_restarts_its_schedule():
     assert pacer.delay(0.25) == 0.0
     pacer.done(10.0)  # far behind: start again from now
     assert pacer.delay(10.0) == pytest.approx(0.0, abs=TOL)
+
+
+@pytest.mark.parametrize('speedup, up, down', [(1.0, 1.2, 0.8), (FLAT_OUT, FLAT_OUT, 100.0)])
+def test_run_menu_speeds_are_stages(speedup, up, down):
+    assert faster(speedup) == pytest.approx(up, abs=TOL)
+    assert slower(speedup) == pytest.approx(down, abs=TOL)
+
+
+def test_pacer_changes_speed_from_now():
+    pacer = Pacer(0.1, 1.0, now_s=0.0)
+    pacer.done(0.0)
+    pacer.set_speedup(10.0, now_s=0.05)          # due at once, then every 10 ms
+    assert pacer.delay(0.05) == 0.0
+    pacer.done(0.05)
+    assert pacer.delay(0.05) == pytest.approx(0.01, abs=TOL)
+    pacer.set_speedup(FLAT_OUT, now_s=0.06)
+    pacer.done(0.06)
+    assert pacer.delay(0.06) == 0.0
+    with pytest.raises(ValueError):
+        pacer.set_speedup(0.0, now_s=0.07)
+
+
+def test_paused_pacer_steps_only_when_asked_and_resumes_without_a_burst():
+    pacer = Pacer(0.1, 1.0, now_s=0.0, paused=True)
+    assert pacer.delay(50.0) == PAUSED_POLL_S
+    pacer.step_once()
+    pacer.step_once()
+    for _ in range(2):
+        assert pacer.delay(50.0) == 0.0
+        pacer.done(50.0)
+    assert pacer.delay(50.0) == PAUSED_POLL_S     # two steps asked, two made
+    pacer.set_paused(False, now_s=60.0)
+    assert pacer.delay(60.0) == 0.0
+    pacer.done(60.0)
+    assert pacer.delay(60.0) == pytest.approx(0.1, abs=TOL)   # one step now, not 100
+    pacer.step_once()                                        # running: nothing to ask
+    pacer.done(60.1)
+    assert pacer.delay(60.1) == pytest.approx(0.1, abs=TOL)
 
 
 @pytest.mark.parametrize('timeout, last, now, expired', [

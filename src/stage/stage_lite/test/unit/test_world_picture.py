@@ -1,13 +1,15 @@
-"""Pictures: walls where the grid has them, beams, trails and robots in their colours."""
+"""Pictures as Stage's window draws them: grid, walls, fans, bodies, trails, status line."""
 import math
 
 import numpy as np
 import pytest
 from course_common.save_image import write_png
 from stage_lite.node import world_picture as picture
-from stage_lite.node.world_picture import RangerView, RobotView, Trails
+from stage_lite.node.camera import Camera
+from stage_lite.node.world_picture import DrawOptions, FloorPlan, RobotView, ScanView, Trails
 
 TOL = 1e-9  # m / px: plain affine maps
+ALPHA = round(picture.FAN_ALPHA * 255) / 255    # Pillow blends in whole steps of 1/255
 
 
 def _room():
@@ -16,100 +18,139 @@ def _room():
     return grid, -1.0, -1.0, 0.02
 
 
-def test_fit_view_keeps_the_aspect_and_margin():
-    view = picture.fit_view((0, 0, 4, 2), 500, 500)
-    assert view.scale == pytest.approx(500 / (4 + 2 * picture.MARGIN_M), abs=TOL)
-    assert view.to_px([(view.x0, view.y1)]).tolist() == [[0.0, 0.0]]
-    (px, py), = view.to_px([(0.0, 0.0)]).tolist()
-    assert py > 0 and px > 0
-
-
-@pytest.mark.parametrize('bounds, w, h', [((0, 0, 0, 1), 10, 10), ((0, 0, 1, 1), 0, 10)])
-def test_fit_view_refuses_empty_inputs(bounds, w, h):
-    with pytest.raises(ValueError):
-        picture.fit_view(bounds, w, h)
-
-
-@pytest.mark.parametrize('max_px', [600, 60])  # bigger than the grid, and much smaller
-def test_floor_image_keeps_thin_walls(max_px):
+def _plan():
     occ = _room()
-    view = picture.fit_view(picture.world_bounds(occ), max_px, max_px)
-    image = np.asarray(picture.floor_image(view, occ))
+    return FloorPlan(occ, picture.world_bounds(occ))
+
+
+def _camera(scale=150.0, yaw=0.0, size=(400, 400)):
+    return Camera(0.0, 0.0, scale, yaw, *size)
+
+
+def _at(image, camera, x, y):
+    (px, py), = camera.to_px([(x, y)]).astype(int).tolist()
+    return np.asarray(image).astype(int)[py, px]
+
+
+def test_floor_checkers_whole_metres_inside_the_world_and_stage_grey_outside():
+    plan = FloorPlan(_room(), (-1.0, -1.0, 1.0, 1.0))
+    camera = _camera(scale=100.0)
+    image = plan.image(camera)
+    assert tuple(_at(image, camera, 0.5, 0.5)) == picture.FREE_RGB     # floor(0)+floor(0): even
+    assert tuple(_at(image, camera, -0.5, 0.5)) == picture.CHECK_RGB   # -1 + 0: odd
+    assert tuple(_at(image, camera, 1.5, 0.0)) == picture.OUTSIDE_RGB  # beyond the extent
+    plain = plan.image(camera, grid_on=False)
+    assert tuple(_at(plain, camera, -0.5, 0.5)) == picture.FREE_RGB
+
+
+@pytest.mark.parametrize('scale', [180.0, 20.0])  # more pixels than cells, and far fewer
+def test_floor_keeps_thin_walls(scale):
+    camera = _camera(scale=scale)
+    image = np.asarray(_plan().image(camera, grid_on=False))
     wall = np.all(image == picture.WALL_RGB, axis=2)
-    w, h = view.size_px
-    (cx, cy), = view.to_px([(0.0, 0.0)]).astype(int).tolist()
+    (cx, cy), = camera.to_px([(0.0, 0.0)]).astype(int).tolist()
     assert not wall[cy, cx]
-    (lx, _), = view.to_px([(-0.99, 0.0)]).astype(int).tolist()
+    (lx, _), = camera.to_px([(-0.99, 0.0)]).astype(int).tolist()
     assert wall[cy, lx - 1: lx + 2].any()   # the left wall survives shrinking
-    assert image.shape == (h, w, 3)
+    assert image.shape == (400, 400, 3)
 
 
-def test_render_draws_robot_beams_and_trail_in_colour():
-    occ = _room()
-    view = picture.fit_view(picture.world_bounds(occ), 400, 400)
-    base = picture.floor_image(view, occ)
+def test_floor_turns_with_the_camera():
+    # yaw 90: the view turns by -90 degrees (Stage's glRotatef(-yaw)): east points down
+    camera = _camera(scale=100.0, yaw=90.0)
+    image = _plan().image(camera, grid_on=False)
+    (wx, wy), = camera.to_px([(0.99, 0.0)]).tolist()
+    assert wy == pytest.approx(200 + 99, abs=TOL) and wx == pytest.approx(200, abs=TOL)
+    assert tuple(_at(image, camera, 0.99, 0.0)) == picture.WALL_RGB
+
+
+def test_render_draws_body_fan_trail_and_status_on_a_copy():
+    plan, camera = _plan(), _camera()
+    base = plan.image(camera)
     angles = np.linspace(-math.pi / 2, math.pi / 2, 31)
     robot = RobotView(pose=(0.0, 0.0, 0.0), size=(0.35, 0.35), origin=(-0.05, 0.0),
                       color=(0.0, 0.0, 1.0),
-                      rangers=(RangerView((0.05, 0.0, 0.0), angles, np.full(31, 0.8)),),
+                      scans=(ScanView((0.05, 0.0, 0.0), angles, np.full(31, 0.8)),),
                       trail=np.array([[-0.9, -0.9], [-0.5, -0.9]]))
-    image = np.asarray(picture.render(view, base, [robot])).astype(int)
-    assert np.array_equal(np.asarray(base), np.asarray(picture.floor_image(view, occ)))
-    (cx, cy), = view.to_px([(-0.1, 0.1)]).astype(int).tolist()
-    assert tuple(image[cy, cx]) == (0, 0, 255)                      # body
-    (bx, by), = view.to_px([(0.6, 0.0)]).astype(int).tolist()
-    alpha = round(picture.FAN_ALPHA * 255) / 255    # Pillow blends in whole steps of 1/255
-    assert np.abs(image[by, bx] - np.array([255 * (1 - alpha)] * 2 + [255])).max() <= 1  # fan
-    (tx, ty), = view.to_px([(-0.7, -0.9)]).astype(int).tolist()
-    assert tuple(image[ty, tx]) == (0, 0, 255)                      # trail
+    options = DrawOptions(trails=True)
+    image = picture.render(camera, base, [robot], options, ' 0m 01s 000msec [1.0]')
+    assert np.array_equal(np.asarray(base), np.asarray(plan.image(camera)))
+    assert tuple(_at(image, camera, -0.1, 0.1)) == (0, 0, 255)                # body
+    below = _at(base, camera, 0.6, 0.0)
+    fan = below + ALPHA * (np.array([0, 0, 255]) - below)
+    assert np.abs(_at(image, camera, 0.6, 0.0) - fan).max() <= 1               # fan
+    assert tuple(_at(image, camera, -0.7, -0.9)) == (0, 0, 255)                # trail
+    pixels = np.asarray(image)
+    assert (pixels[-5:, :150] == picture.CLOCK_BOX_RGB).all(axis=2).any()     # status box
+    bare = picture.render(camera, base, [robot], DrawOptions(data=False, clock=False))
+    assert tuple(_at(bare, camera, 0.6, 0.0)) == tuple(below)                  # no fan
+    assert tuple(_at(bare, camera, -0.7, -0.9)) != (0, 0, 255)                 # no trail
+    assert not (np.asarray(bare)[-5:, :150] == picture.CLOCK_BOX_RGB).all(axis=2).any()
 
 
 def test_four_overlapping_fans_stay_four_fans():
     # The lesson's hall: four robots whose fans overlap. Each fan is its robot's colour laid
     # over the floor, not an opaque area: a pixel only robot k sees is tinted k's colour, a
     # pixel two fans share shows both, and a wall under a fan stays darker than the free floor.
-    occ = _room()
-    view = picture.fit_view(picture.world_bounds(occ), 400, 400)
-    base = picture.floor_image(view, occ)
+    camera = _camera()
+    base = _plan().image(camera, grid_on=False)
     colors = [(0, 0, 1.0), (1.0, 0, 0), (0, 1.0, 0), (1.0, 0, 1.0)]
     angles = np.linspace(-0.3, 0.3, 21)
     # 0 and 2 face each other (their fans share x in [-0.2, 0.2]); 1 and 3 face the walls
     poses = [(-0.8, 0.5, 0.0), (-0.7, -0.5, math.pi), (0.8, 0.5, math.pi), (0.7, -0.5, 0.0)]
     robots = [RobotView(pose=p, size=(0.1, 0.1), origin=(0.0, 0.0), color=c,
-                        rangers=(RangerView((0.0, 0.0, 0.0), angles, np.full(21, 1.0)),))
+                        scans=(ScanView((0.0, 0.0, 0.0), angles, np.full(21, 1.0)),))
               for p, c in zip(poses, colors, strict=True)]
-    image = np.asarray(picture.render(view, base, robots)).astype(int)
-    floor = np.asarray(base).astype(int)
-
-    def at(x, y):
-        (px, py), = view.to_px([(x, y)]).astype(int).tolist()
-        return image[py, px], floor[py, px]
-    alpha = round(picture.FAN_ALPHA * 255) / 255    # Pillow blends in whole steps of 1/255
+    image = picture.render(camera, base, robots, DrawOptions(clock=False))
     for (x, y, yaw), color in zip(poses, colors, strict=True):
-        pixel, below = at(x + 0.25 * math.cos(yaw), y)        # in front of it: its fan only
-        expected = below + alpha * (np.array(color) * 255 - below)
+        x_ahead = x + 0.25 * math.cos(yaw)                # in front of it: its fan only
+        below = _at(base, camera, x_ahead, y)
+        expected = below + ALPHA * (np.array(color) * 255 - below)
+        pixel = _at(image, camera, x_ahead, y)
         assert np.abs(pixel - expected).max() <= 1, (pixel, expected)
-    shared, below = at(0.0, 0.5)              # robots 0 (blue), then 2 (green): both fans
-    blue = below + alpha * (np.array([0, 0, 255]) - below)
-    expected = blue + alpha * (np.array([0, 255, 0]) - blue)
-    assert np.abs(shared - expected).max() <= 2, (shared, expected)
-    wall, below = at(-0.99, -0.5)             # the west wall, under robot 1's fan
-    assert (wall < 128).all() and wall.tolist() != below.tolist()
+    below = _at(base, camera, 0.0, 0.5)      # robots 0 (blue), then 2 (green): both fans
+    blue = below + ALPHA * (np.array([0, 0, 255]) - below)
+    expected = blue + ALPHA * (np.array([0, 255, 0]) - blue)
+    assert np.abs(_at(image, camera, 0.0, 0.5) - expected).max() <= 2
+    wall, below = _at(image, camera, -0.99, -0.5), _at(base, camera, -0.99, -0.5)
+    assert (wall < 128).all() and wall.tolist() != below.tolist()   # the west wall, under a fan
 
 
-def test_footprint_follows_origin_and_yaw():
+def test_footprint_is_the_size_rectangle_or_the_blocks():
     robot = RobotView(pose=(1.0, 2.0, math.pi / 2), size=(0.4, 0.2), origin=(-0.1, 0.0),
                       color=(1, 0, 0))
-    corners = picture.footprint(robot)
+    (corners,) = picture.footprint(robot)
     assert corners[:, 0].min() == pytest.approx(0.9, abs=TOL)
     assert corners[:, 1].min() == pytest.approx(2.0 - 0.3, abs=TOL)
     assert corners[:, 1].max() == pytest.approx(2.0 + 0.1, abs=TOL)
+    triangle = np.array([(0.2, 0.0), (-0.1, 0.1), (-0.1, -0.1)])
+    shaped = RobotView(pose=(1.0, 2.0, math.pi / 2), size=(0.3, 0.2), origin=(0.0, 0.0),
+                       color=(1, 0, 0), body=(triangle,))
+    (polygon,) = picture.footprint(shaped)
+    assert polygon[0].tolist() == pytest.approx([1.0, 2.2], abs=TOL)   # the tip, turned
+
+
+def test_a_robot_far_too_small_to_see_is_still_a_dot():
+    camera = _camera(scale=0.5)
+    base = _plan().image(camera)
+    robot = RobotView(pose=(0.0, 0.0, 0.0), size=(0.35, 0.35), origin=(0.0, 0.0),
+                      color=(1.0, 0.0, 0.0))
+    image = np.asarray(picture.render(camera, base, [robot], DrawOptions(clock=False)))
+    assert (image == (255, 0, 0)).all(axis=2).sum() >= 1
+
+
+@pytest.mark.parametrize('window, expected', [
+    (None, DrawOptions()),
+    ({'show_data': 0.0, 'show_grid': 0.0}, DrawOptions(data=False, grid=False)),
+    ({'show_clock': 0.0, 'show_trailfast': 1.0}, DrawOptions(clock=False, trails=True)),
+    ({'show_data': 'yes'}, DrawOptions()),          # not a number: Stage's default stays
+])
+def test_draw_options_follow_the_window_blocks_flags(window, expected):
+    assert picture.draw_options(window) == expected
 
 
 def test_the_floor_image_saves_as_png_in_new_directories(tmp_path):
-    occ = _room()
-    view = picture.fit_view(picture.world_bounds(occ), 50, 50)
-    path = write_png(str(tmp_path / 'a' / 'b.png'), picture.floor_image(view, occ))
+    path = write_png(str(tmp_path / 'a' / 'b.png'), _plan().image(_camera(size=(50, 50))))
     assert path.endswith('b.png') and (tmp_path / 'a' / 'b.png').stat().st_size > 0
 
 

@@ -1,56 +1,222 @@
-"""stageros's optional Tk window: the world, robots, beams and trails, redrawn ~10 times a second.
+"""stageros's window, as Stage 4.3's: the world's view, a status line, pan, zoom, the Run menu.
 
 Imported only without -g, so a headless node never loads tkinter or ImageTk. The window runs
-in the main thread from snapshots taken under the node's lock; the simulation stays in the
-step thread. With no display (or no Tk) the node WARNs and runs headless, where Stage would
-fail to open its window.
+in the main thread; the simulation stays in the step thread and never waits for a frame: every
+REFRESH_MS the window takes a snapshot under the node's lock (a copy of the robots' views and
+the status line) and draws it outside the lock, so a slow frame is a frame dropped, never a
+step. With no display (or no Tk) the node WARNs and runs headless, where Stage would fail.
+
+What the user does, as in Stage's window (libstage/worldgui.cc, canvas.cc):
+- the world file's ``window( size center rotate scale show_data show_grid show_clock
+  show_trailfast )`` sets the view and what is drawn (camera.window_camera, draw_options);
+- drag with the left button to pan, turn the wheel to zoom about the pointer; resizing the
+  window keeps the centre and the scale; View -> Reset (space) goes back to the world's view;
+- View: Data (d), Grid (g), Clock (c), Trails (Ctrl+F) switch those drawings;
+- Run: Pause (p), One step (.), Faster (]: x1.2), Slower ([: x0.8), Realtime ({), Fast (}:
+  as fast as possible): the same speed-up as ~speedup, which only sets the speed at start;
+- closing the window leaves the simulation running headless (a line in the log says so);
+  File -> Exit (Ctrl+Q) ends stageros, as Stage's File -> Exit ends Stage.
 """
+import contextlib
 import os
+from dataclasses import replace
 
 import rospy
-from course_common.tk_window import open_root, show_picture
+from course_common.tk_window import open_root
 
 from . import world_picture as picture
+from .camera import MIN_SIZE_PX
 
 #: Redraw period: 10 frames/s, one per simulated step at real time; more would cost CPU
-#: without showing anything new.
+#: without showing anything new (a frame is drawn only when the world or the view changed).
 REFRESH_MS = 100
-#: Window size when the world file has no window block (Stage's default is about this).
-DEFAULT_SIZE_PX = (700, 700)
-MAX_SIZE_PX = 1600
+#: Stage's Run and View keys.
+RUN_KEYS = {'p': 'toggle_pause', 'period': 'step_once', 'bracketright': 'faster',
+            'bracketleft': 'slower', 'braceleft': 'realtime', 'braceright': 'flat_out'}
+VIEW_KEYS = {'d': 'data', 'g': 'grid', 'c': 'clock'}
 
 
-def _window_size(world):
-    size = (world.window or {}).get('size')
-    try:
-        w, h = (int(v) for v in size)
-    except (TypeError, ValueError):
-        return DEFAULT_SIZE_PX
-    if w < 50 or h < 50:
-        return DEFAULT_SIZE_PX
-    return min(w, MAX_SIZE_PX), min(h, MAX_SIZE_PX)
+class StageWindow:
+    """The window's state and its Tk widgets (made in the main thread by run_window).
+
+    view: the node's WorldView; snapshot(): (steps, robots' views, status line) under the
+    node's lock; loop: the StepLoop (the Run menu's pause and speed); finished(): True when
+    the window must close (ROS shut down).
+    """
+
+    def __init__(self, root, world, view, snapshot, loop, finished):
+        import tkinter
+        self.root = root
+        self.view = view
+        self.snapshot = snapshot
+        self.loop = loop
+        self.finished = finished
+        screen = (root.winfo_screenwidth(), root.winfo_screenheight())
+        self.home = view.camera(screen)
+        self.camera = self.home
+        self.options = view.options
+        self._drawn = None         # (step, camera, options) of the picture on screen
+        self._drag = None          # the pointer's last position while dragging
+        self._closed = False
+        root.title('Stage: %s' % os.path.basename(world.path))
+        root.geometry('%dx%d' % self.home.size_px)
+        root.minsize(MIN_SIZE_PX, MIN_SIZE_PX)
+        self._menus(tkinter)
+        self.canvas = tkinter.Canvas(root, width=self.home.width_px,
+                                     height=self.home.height_px, borderwidth=0,
+                                     highlightthickness=0, background='#b3b3cc')
+        self.canvas.pack(fill='both', expand=True)
+        self._photo = None
+        self._image_item = None
+        self._bind()
+        root.protocol('WM_DELETE_WINDOW', self.close)
+
+    def _menus(self, tkinter):
+        """File, View, Run and Help as Stage has them (a bar inside the window, as FLTK's)."""
+        bar = tkinter.Frame(self.root, borderwidth=1, relief='raised')
+        bar.pack(side='top', fill='x')
+        entries = {
+            'File': [('Exit', 'Ctrl+Q', self.exit)],
+            'View': [('Reset', 'space', self.reset_view), None,
+                     ('Data', 'd', lambda: self.toggle('data')),
+                     ('Grid', 'g', lambda: self.toggle('grid')),
+                     ('Clock', 'c', lambda: self.toggle('clock')),
+                     ('Trails', 'Ctrl+F', lambda: self.toggle('trails'))],
+            'Run': [('Pause', 'p', self.loop_call('toggle_pause')),
+                    ('One step', '.', self.loop_call('step_once')), None,
+                    ('Faster', ']', self.loop_call('faster')),
+                    ('Slower', '[', self.loop_call('slower')), None,
+                    ('Realtime', '{', self.loop_call('realtime')),
+                    ('Fast', '}', self.loop_call('flat_out'))],
+            'Help': [('About stageros...', '', self.about)],
+        }
+        for title, items in entries.items():
+            button = tkinter.Menubutton(bar, text=title, underline=0)
+            menu = tkinter.Menu(button, tearoff=False)
+            for item in items:
+                if item is None:
+                    menu.add_separator()
+                else:
+                    menu.add_command(label=item[0], accelerator=item[1], command=item[2])
+            button['menu'] = menu
+            button.pack(side='left')
+
+    def _bind(self):
+        root, canvas = self.root, self.canvas
+        for key, action in RUN_KEYS.items():
+            root.bind('<KeyPress-%s>' % key, lambda _e, a=action: self.loop_call(a)())
+        for key, option in VIEW_KEYS.items():
+            root.bind('<KeyPress-%s>' % key, lambda _e, o=option: self.toggle(o))
+        root.bind('<Control-f>', lambda _e: self.toggle('trails'))
+        root.bind('<KeyPress-space>', lambda _e: self.reset_view())
+        root.bind('<Control-q>', lambda _e: self.exit())
+        canvas.bind('<ButtonPress-1>', self._press)
+        canvas.bind('<B1-Motion>', self._motion)
+        canvas.bind('<ButtonRelease-1>', lambda _e: setattr(self, '_drag', None))
+        canvas.bind('<Button-4>', lambda e: self.zoom(1, e.x, e.y))     # X11's wheel
+        canvas.bind('<Button-5>', lambda e: self.zoom(-1, e.x, e.y))
+        canvas.bind('<MouseWheel>', lambda e: self.zoom(1 if e.delta > 0 else -1, e.x, e.y))
+        canvas.bind('<Configure>', lambda e: self.resize(e.width, e.height))
+
+    # what the user does
+    def loop_call(self, action):
+        def call():
+            if action == 'toggle_pause':
+                self.loop.pause(not self.loop.paused)
+            else:
+                getattr(self.loop, action)()
+            self._drawn = None   # the status line changes
+        return call
+
+    def toggle(self, option):
+        self.options = replace(self.options, **{option: not getattr(self.options, option)})
+
+    def reset_view(self):
+        self.camera = self.home.resized(*self.camera.size_px)
+
+    def zoom(self, notches, x, y):
+        self.camera = self.camera.zoomed(notches, (x, y))
+
+    def resize(self, width, height):
+        if (width, height) != self.camera.size_px:
+            self.camera = self.camera.resized(width, height)
+
+    def _press(self, event):
+        self.canvas.focus_set()
+        self._drag = (event.x, event.y)
+
+    def _motion(self, event):
+        if self._drag is not None:
+            dx, dy = event.x - self._drag[0], event.y - self._drag[1]
+            self.camera = self.camera.panned(dx, dy)
+            self._drag = (event.x, event.y)
+
+    def about(self):
+        from tkinter import messagebox
+        messagebox.showinfo('About stageros', 'stageros (stage_lite): Stage 4.3 and '
+                            'stage_ros 1.8.0 in Python, for the course.', parent=self.root)
+
+    def close(self):
+        """The window's close button: the window goes, the simulation runs on."""
+        rospy.loginfo('stageros: window closed; the simulation runs on without it '
+                      '(Ctrl-C, or File -> Exit in the window, ends stageros)')
+        self._closed = True
+        self.root.quit()
+
+    def exit(self):
+        """File -> Exit: stageros ends, as Stage does."""
+        rospy.loginfo('stageros: user exited via File -> Exit')
+        rospy.signal_shutdown('File -> Exit in the window')
+        self._closed = True
+        self.root.quit()
+
+    # drawing
+    def frame(self):
+        """The picture to show now, or None when nothing changed since the last one."""
+        step, robots, status = self.snapshot()
+        state = (step, self.camera, self.options, status)
+        if state == self._drawn:
+            return None
+        self._drawn = state
+        base = self.view.floor(self.camera, self.options.grid)
+        return picture.render(self.camera, base, robots, self.options, status)
+
+    def refresh(self):
+        if self.finished():
+            self.root.quit()
+            return
+        image = self.frame()
+        if image is not None:
+            self._show(image)
+        self.root.after(REFRESH_MS, self.refresh)
+
+    def _show(self, image):
+        from PIL import ImageTk
+        if self._photo is None or (self._photo.width(), self._photo.height()) != image.size:
+            self._photo = ImageTk.PhotoImage(image)
+            if self._image_item is None:
+                self._image_item = self.canvas.create_image(0, 0, anchor='nw',
+                                                            image=self._photo)
+            else:
+                self.canvas.itemconfigure(self._image_item, image=self._photo)
+        else:
+            self._photo.paste(image)
 
 
-def run_window(world, view, snapshot):
-    """Show the window until ROS shuts down or it is closed; False if none could be opened.
-
-    world: the World (its path and window block); view: its WorldView; snapshot(): (steps so
-    far, the robots' views), taken under the node's lock."""
+def run_window(world, view, snapshot, loop):
+    """Show the window until ROS shuts down, File -> Exit or the window is closed; False if
+    none could be opened. world: the World (its path); view: its WorldView; snapshot():
+    (steps, robots' views, status line) under the node's lock; loop: the StepLoop."""
     root = open_root('stageros: no display (DISPLAY is not set): running without a window '
                      '(use -g to ask for that)',
                      'stageros: the window could not be opened (%s): running without one')
     if root is None:
         return False
-    fitted, base = view.floor(*_window_size(world))
-    state = {'step': None}
-
-    def next_image():
-        step, robots = snapshot()
-        if step == state['step']:  # redraw only when the world moved on
-            return None
-        state['step'] = step
-        return picture.render(fitted, base, robots)
-
-    show_picture(root, 'Stage: %s' % os.path.basename(world.path), base, next_image,
-                 REFRESH_MS, 0, rospy.is_shutdown)
+    window = StageWindow(root, world, view, snapshot, loop, rospy.is_shutdown)
+    root.after(0, window.refresh)
+    try:
+        root.mainloop()
+    finally:
+        with contextlib.suppress(Exception):
+            root.destroy()
     return True

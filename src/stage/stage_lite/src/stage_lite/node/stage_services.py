@@ -1,4 +1,6 @@
 """stageros's services and latched extras: reset_positions, ~save_image and /map."""
+from dataclasses import replace
+
 import rospy
 from course_common.save_image import answer_save_image, write_png
 from geometry_msgs.msg import TransformStamped
@@ -10,9 +12,6 @@ from stage_lite.srv import SaveImage, SaveImageResponse
 
 from . import map_msg
 from . import world_picture as picture
-
-#: Longest side of a ~save_image picture, px (about 27 px/m on the lesson's 58.7 m floor).
-IMAGE_MAX_PX = 1600
 
 
 class _PackedGrid(OccupancyGrid):
@@ -33,14 +32,16 @@ class StageServices:
 
     world, lock: the world and the lock the step thread holds while it steps it; view: the
     WorldView the pictures draw from; params: the node's StagerosParams; names: each robot's
-    RobotNames (for /map's transforms).
+    RobotNames (for /map's transforms); snapshot(): (steps, the robots' views, the status
+    line), taken under the lock.
     """
 
-    def __init__(self, world, lock, view, params, names):
+    def __init__(self, world, lock, view, params, names, snapshot):
         self.world = world
         self.lock = lock
         self.view = view
         self.params = params
+        self.snapshot = snapshot
         self._latched = self._publish_map(names) if params.publish_map else []
         self.reset_srv = rospy.Service('reset_positions', Empty, self.handle_reset)
         # an extra of stage_lite's: off until asked for, so the interface stays stageros's
@@ -59,11 +60,13 @@ class StageServices:
             'could not save the image'))
 
     def save_image(self, path):
-        """Writes the world's picture to path (absolute); returns the path written."""
-        view, base = self.view.floor(IMAGE_MAX_PX, IMAGE_MAX_PX)
-        with self.lock:
-            robots = self.view.robots()
-        return write_png(path, picture.render(view, base, robots))
+        """Writes the world's picture to path (absolute); returns the path written: the
+        window's drawing of the world's own view (its window block), with the trails."""
+        camera = self.view.camera()
+        options = replace(self.view.options, trails=True)
+        base = self.view.floor(camera, options.grid)
+        _, robots, status = self.snapshot()
+        return write_png(path, picture.render(camera, base, robots, options, status))
 
     def _publish_map(self, names):
         """Latches /map and map -> odom transforms; returns the publishers (kept alive)."""

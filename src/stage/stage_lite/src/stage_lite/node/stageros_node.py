@@ -56,6 +56,7 @@ from .stage_publish import StepOutput
 from .stage_services import StageServices
 from .stageros_args import ArgsError, parse_args
 from .stageros_params import load_params
+from .status import RateMeter, clock_string
 from .step_loop import StepLoop
 from .world_view import WorldView
 
@@ -78,9 +79,11 @@ class StageNode:
             rospy.logwarn(line)
         self.output = StepOutput(world, self.names, params, self.on_cmd_vel)
         self.view = WorldView(world)
-        self.services = StageServices(world, self.lock, self.view, params, self.names)
+        self.rate = RateMeter()           # the real-time factor of the status line
         self.loop = StepLoop(self.step, world.interval_sim_s, node_speedup(world, params),
                              world.quit_time_s, self.output.wait_for_waiting_subscribers)
+        self.services = StageServices(world, self.lock, self.view, params, self.names,
+                                      self.snapshot)
 
     def on_cmd_vel(self, msg, index):
         vx, vy, wz = msg.linear.x, msg.linear.y, msg.angular.z
@@ -101,6 +104,7 @@ class StageNode:
             stamp = self.clock.stamp()
             frames, stalls = self.output.collect(self.world, stamp)
             self.view.record()
+            self.rate.add(time.monotonic(), self.clock.now_s)
             # After collecting: the odom of this step still shows the command it moved with,
             # as in stageros, where SetSpeed(0) takes effect at the next world update.
             if self.watchdog.expired(self.clock.now_ns):
@@ -111,9 +115,11 @@ class StageNode:
         return now_s
 
     def snapshot(self):
-        """(steps so far, the robots' views) taken under the lock, for the window."""
+        """(steps so far, the robots' views, the status line) taken under the lock, for the
+        window and ~save_image."""
         with self.lock:
-            return self.clock.steps, self.view.robots()
+            status = clock_string(self.clock.now_ns, self.rate.factor(), self.loop.paused)
+            return self.clock.steps, self.view.robots(), status
 
     def describe(self):
         w = self.world
@@ -226,7 +232,7 @@ def main(argv=None):
     try:
         if args.gui:
             from .gui import run_window  # tkinter only when a window is wanted
-            run_window(world, node.view, node.snapshot)
+            run_window(world, node.view, node.snapshot, node.loop)
         rospy.spin()
     finally:
         node.loop.stop()

@@ -1,9 +1,11 @@
 """stageros's stepping thread: one world step per interval_sim, paced to ~speedup x real time."""
+import threading
 import time
 
 import rospy
 from course_common.deadline_loop import DeadlineLoop
 
+from . import pacing
 from .pacing import FLAT_OUT, Pacer
 
 #: Before the first step, the longest wall time given to subscribers that were already
@@ -19,26 +21,65 @@ class StepLoop(DeadlineLoop):
     is called once, before the first step. Stops stepping when quit_time is reached: as in
     stageros, the world stands still (the clock frozen) and the node stays up with its topics
     and services. An exception from a step is logged (throttled) and the loop goes on.
+
+    The window's Run menu calls pause, step_once, faster, slower, realtime and flat_out from
+    its own thread; ``speedup`` and ``paused`` tell what the loop does now.
     """
 
-    def __init__(self, step, interval_s, speedup, quit_time_s=0.0, before_first=None):
+    def __init__(self, step, interval_s, speedup, quit_time_s=0.0, before_first=None,
+                 paused=False):
         self.step = step
         self.interval_s = interval_s
         self.speedup = speedup
+        self.paused = paused
         self._quit_s = quit_time_s if quit_time_s > 0 else None
         self._before_first = before_first
+        self._pacer = None
+        self._control = threading.Lock()   # the window's thread against the first schedule
         super().__init__(self._step, self._schedule, 'stageros_steps', 'stageros step')
 
     def describe(self):
-        if self.speedup == FLAT_OUT:
-            return 'as fast as possible'
-        return 'real time' if self.speedup == 1.0 else '%g x real time' % self.speedup
+        return describe_speedup(self.speedup)
 
     def _schedule(self):
         # So that nodes started before stageros get its first step (t = 0.1 s) too.
         if self._before_first is not None:
             self._before_first(FIRST_STEP_WAIT_S)
-        return Pacer(self.interval_s, self.speedup, time.monotonic())
+        with self._control:
+            self._pacer = Pacer(self.interval_s, self.speedup, time.monotonic(), self.paused)
+            return self._pacer
+
+    def _set_speedup(self, speedup):
+        with self._control:
+            self.speedup = speedup
+            if self._pacer is not None:
+                self._pacer.set_speedup(speedup, time.monotonic())
+        rospy.loginfo('stageros: %s', self.describe())
+
+    def pause(self, paused):
+        """Run -> Pause: stop stepping (the clock stands still) or go on."""
+        with self._control:
+            self.paused = paused
+            if self._pacer is not None:
+                self._pacer.set_paused(paused, time.monotonic())
+
+    def step_once(self):
+        """Run -> One step: one step while paused (nothing otherwise)."""
+        with self._control:
+            if self._pacer is not None:
+                self._pacer.step_once()
+
+    def faster(self):
+        self._set_speedup(pacing.faster(self.speedup))
+
+    def slower(self):
+        self._set_speedup(pacing.slower(self.speedup))
+
+    def realtime(self):
+        self._set_speedup(1.0)
+
+    def flat_out(self):
+        self._set_speedup(FLAT_OUT)
 
     def _step(self):
         """One step; False once quit_time is reached (the loop ends, the node stays)."""
@@ -48,3 +89,9 @@ class StepLoop(DeadlineLoop):
                           'stays up (as stageros)', self._quit_s)
             return False
         return True
+
+
+def describe_speedup(speedup):
+    if speedup == FLAT_OUT:
+        return 'as fast as possible'
+    return 'real time' if speedup == 1.0 else '%g x real time' % speedup

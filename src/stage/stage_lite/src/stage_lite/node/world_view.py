@@ -1,19 +1,41 @@
 """What stageros's pictures show of the world, kept in one place (pure: no rospy).
 
-WorldView holds what a picture needs beyond the world itself: each robot's trail and its
-rangers' beam angles. The window (gui) and ~save_image (stage_services) both draw from one:
-record() after every step and robots() under the node's lock, pictures outside it.
+WorldView holds what a picture needs beyond the world itself: each robot's trail, its body
+and its rangers' beam angles, the world's window block read as a camera and draw options,
+and the floor drawn for a camera. The window (gui) and ~save_image (stage_services) both
+draw from one: record() after every step and robots() under the node's lock, pictures
+outside it.
 """
+import math
+
+import numpy as np
+
 from . import world_picture as picture
+from .camera import robots_box, window_camera, window_size
+
+#: Floors kept drawn: the world's own view and the window's latest ones.
+FLOOR_CACHE = 4
+
+
+def _body_polygons(model):
+    """The model's blocks as polygons in the robot frame (its geom pose applied)."""
+    gx, gy, _, ga = model.geom_pose
+    c, s = math.cos(ga), math.sin(ga)
+    return tuple(np.column_stack((gx + c * b.pts[:, 0] - s * b.pts[:, 1],
+                                  gy + s * b.pts[:, 0] + c * b.pts[:, 1]))
+                 for b in model.blocks if len(b.pts) >= 3)
 
 
 class WorldView:
-    """The robots' trails and views of a world, and its floor fitted to a picture size."""
+    """The robots' trails and views of a world, its window's camera and its floor pictures."""
 
     def __init__(self, world):
         self.world = world
         self.trails = picture.Trails(len(world.robots))
+        self.options = picture.draw_options(world.window)
         self._angles = [[r.local_angles() for r in robot.rangers] for robot in world.robots]
+        self._bodies = [_body_polygons(robot.model) for robot in world.robots]
+        self._plan = None
         self._floors = {}
 
     def record(self):
@@ -30,23 +52,34 @@ class WorldView:
         """RobotView of every robot now (copies: draw them outside the lock)."""
         views = []
         for i, robot in enumerate(self.world.robots):
-            rangers = tuple(picture.RangerView((r.pose[0], r.pose[1], r.pose[3]),
-                                               self._angles[i][k], r.ranges.copy())
-                            for k, r in enumerate(robot.rangers))
+            scans = tuple(picture.ScanView((r.pose[0], r.pose[1], r.pose[3]),
+                                           self._angles[i][k], r.ranges.copy())
+                          for k, r in enumerate(robot.rangers))
             views.append(picture.RobotView(
                 pose=tuple(robot.pose), size=tuple(robot.size[:2]),
                 origin=tuple(robot.origin[:2]), color=tuple(robot.color_rgb),
-                rangers=rangers, trail=self.trails.get(i)))
+                scans=scans, trail=self.trails.get(i), body=self._bodies[i]))
         return views
 
-    def floor(self, width_px, height_px):
-        """(view, floor image) of the world fitted to width x height px, made once per size.
-        The world's static parts only: no lock needed."""
-        key = (width_px, height_px)
-        if key not in self._floors:
+    def plan(self):
+        """The world's FloorPlan (its static parts only: no lock needed), made once."""
+        if self._plan is None:
             occupancy = self.world.occupancy()
-            starts = [r.start_pose for r in self.world.robots]
-            view = picture.fit_view(picture.world_bounds(occupancy, starts), width_px,
-                                    height_px)
-            self._floors[key] = (view, picture.floor_image(view, occupancy))
+            self._plan = picture.FloorPlan(occupancy, picture.world_bounds(occupancy))
+        return self._plan
+
+    def camera(self, screen_px=None):
+        """The camera of the world's window block, with the robots in view where it leaves
+        the centre or scale out (camera.window_camera)."""
+        window = self.world.window
+        box = robots_box([r.start_pose[:2] for r in self.world.robots], self.plan().extent)
+        return window_camera(window, window_size(window, screen_px), box)
+
+    def floor(self, camera, grid_on=True):
+        """The floor picture of camera's view (FloorPlan.image), drawn once per view."""
+        key = (camera, grid_on)
+        if key not in self._floors:
+            if len(self._floors) >= FLOOR_CACHE:
+                self._floors.pop(next(iter(self._floors)))
+            self._floors[key] = self.plan().image(camera, grid_on)
         return self._floors[key]
