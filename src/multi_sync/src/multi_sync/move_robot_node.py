@@ -1,21 +1,19 @@
 """The lesson's move_robot: announce ready, wait for the monitor's GO, drive forward safely."""
-import math
 import threading
 import time
-from dataclasses import dataclass
 
 import rospy
 from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
-from course_common.params import check_number
 from course_common.publishers import LostSubscribers, unqueued_publisher
 from course_common.robot_ids import parse_robot_id
 from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 
-from multi_sync.motion import WORLD_SIZE_M, Decision, DriveLimits, TeamPositions, decide
+from multi_sync.motion import TURTLESIM, Decision, DriveLimits, TeamPositions, decide
+from multi_sync.move_robot_params import load_config
 from multi_sync.msg import RobotPosition, RobotStatus
-from multi_sync.robot_sensors import STAGE, TURTLESIM, RobotSensors
+from multi_sync.robot_sensors import RobotSensors
 from multi_sync.team import MONITOR_FRAME_ID
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
@@ -23,65 +21,6 @@ SHARED_QUEUE = 100
 # A GO stamped this close to the wall clock was stamped on wall time, like this robot's log
 # line; on the Stage lesson the monitor runs on sim time, which starts at 0.
 WALL_STAMP_S = 3600.0
-
-
-@dataclass(frozen=True)
-class MoveRobotConfig:
-    """move_robot's private parameters (see MoveRobotNode); how it drives defaults to
-    DriveLimits' (the one place of the lesson's 0.2 m/s, 0.5 m and 1.0 m)."""
-
-    speed_mps: float = DriveLimits.speed_mps
-    rate_hz: float = 10.0
-    stop_distance_m: float = DriveLimits.stop_distance_m
-    min_gap_m: float = DriveLimits.min_gap_m
-    cone_half_angle_rad: float = 0.35
-    input_timeout_s: float = 2.0
-    world_size_m: float = DriveLimits.world_size_m
-    announce_period_s: float = 1.0
-    report_period_s: float = 5.0
-
-
-#: On Stage, the bumper and the gap are bounded by what a laser can see, not by a square.
-STAGE_MAX_DISTANCE_M = 100.0
-
-# name: (lowest, highest, lowest allowed?) for each parameter; every one must be finite.
-_RANGES = {
-    'speed_mps': (0.0, 10.0, False),
-    'rate_hz': (0.0, 1000.0, False),
-    'stop_distance_m': (0.0, WORLD_SIZE_M / 2, True),
-    'min_gap_m': (0.0, WORLD_SIZE_M, True),
-    'cone_half_angle_rad': (0.0, math.pi, False),
-    'input_timeout_s': (0.0, 3600.0, True),
-    'world_size_m': (0.0, 1000.0, False),
-    'announce_period_s': (0.0, 60.0, False),
-    'report_period_s': (0.0, 3600.0, False),
-}
-
-
-def load_config(get_param=rospy.get_param, simulator=None):
-    """Read and check the private parameters; raise ValueError (ParamError) naming the bad one.
-
-    simulator STAGE (the Stage lesson's move_robot_sync): the distances are bounded by
-    STAGE_MAX_DISTANCE_M instead of turtlesim's square, and ~world_size_m is not read."""
-    ranges = dict(_RANGES)
-    if simulator == STAGE:
-        del ranges['world_size_m']
-        ranges['stop_distance_m'] = (0.0, STAGE_MAX_DISTANCE_M, True)
-        ranges['min_gap_m'] = (0.0, STAGE_MAX_DISTANCE_M, True)
-    values = {}
-    for name, (low, high, low_ok) in ranges.items():
-        values[name] = check_number('~' + name,
-                                    get_param('~' + name, getattr(MoveRobotConfig, name)),
-                                    low, high, low_open=not low_ok)
-    if simulator == STAGE:
-        values['world_size_m'] = None
-    config = MoveRobotConfig(**values)
-    try:
-        DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
-                    config.world_size_m)
-    except ValueError as err:
-        raise ValueError('parameters ~stop_distance_m and ~world_size_m: %s' % err) from None
-    return config
 
 
 class _AnnounceOnConnect(rospy.SubscribeListener):
@@ -137,7 +76,7 @@ class MoveRobotNode:
             network cut). 0 disables.
         ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's); not read
             by move_robot_sync, the Stage lesson's robot, whose bumper and gap are bounded by
-            STAGE_MAX_DISTANCE_M (100 m) instead.
+            move_robot_params.STAGE_MAX_DISTANCE_M (100 m) instead.
         ~announce_period_s (float, 1.0 s): ready re-announcement period until GO.
         ~report_period_s (float, 5.0 s): how often the nearest teammate is logged.
     """
@@ -338,7 +277,7 @@ def main(argv=None, simulator=None):
     (the Stage lesson's: simulator=STAGE)."""
     robot_id = parse_argv_or_exit(parse_robot_id, argv)
     init_node('move_robot_%d' % robot_id)
-    config = load_or_exit(lambda: load_config(simulator=simulator), 'move_robot')
+    config = load_or_exit(lambda: load_config(rospy.get_param, simulator), 'move_robot')
     rospy.loginfo('Robot %d: %s', robot_id, config)
     MoveRobotNode(robot_id, config, simulator)
     rospy.spin()
