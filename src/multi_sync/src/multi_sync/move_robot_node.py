@@ -5,7 +5,7 @@ import time
 import rospy
 from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
-from course_common.publishers import LostSubscribers, unqueued_publisher
+from course_common.publishers import LostSubscribers, OnNewSubscriber, unqueued_publisher
 from course_common.robot_ids import parse_robot_id
 from course_common.startup import init_node
 from geometry_msgs.msg import Twist
@@ -21,17 +21,6 @@ SHARED_QUEUE = 100
 # A GO stamped this close to the wall clock was stamped on wall time, like this robot's log
 # line; on the Stage lesson the monitor runs on sim time, which starts at 0.
 WALL_STAMP_S = 3600.0
-
-
-class _AnnounceOnConnect(rospy.SubscribeListener):
-    """Sends the robot's ready status to each new team_status subscriber as it connects."""
-
-    def __init__(self, node):
-        super().__init__()
-        self._node = node
-
-    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
-        self._node.announce_to(peer_publish)
 
 
 class MoveRobotNode:
@@ -105,7 +94,7 @@ class MoveRobotNode:
         self._cmd_lost = LostSubscribers(self._cmd_pub, describe='Robot %d: %%s' % robot_id)
         self._pos_pub = rospy.Publisher('team_positions', RobotPosition, queue_size=10)
         self._status_pub = rospy.Publisher('team_status', RobotStatus, queue_size=10,
-                                           subscriber_listener=_AnnounceOnConnect(self))
+                                           subscriber_listener=OnNewSubscriber(self.announce_to))
         rospy.on_shutdown(self._stop)
         # reset=True: on sim time a restarted stageros sends /clock back to its start, which
         # would end a plain rospy.Timer (ROSTimeMovedBackwardsException).
