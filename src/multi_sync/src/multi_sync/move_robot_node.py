@@ -1,4 +1,5 @@
 """The lesson's move_robot: announce ready, wait for the monitor's GO, drive forward safely."""
+import sys
 import threading
 import time
 
@@ -10,8 +11,8 @@ from course_common.robot_ids import parse_robot_id
 from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 
-from multi_sync.motion import TURTLESIM, Decision, DriveLimits, TeamPositions, decide
-from multi_sync.move_robot_params import load_config
+from multi_sync.motion import TURTLESIM, Decision, TeamPositions, decide
+from multi_sync.move_robot_params import drive_limits, load_config
 from multi_sync.msg import RobotPosition, RobotStatus
 from multi_sync.robot_sensors import RobotSensors
 from multi_sync.team import MONITOR_FRAME_ID
@@ -57,15 +58,17 @@ class MoveRobotNode:
             ahead (turtlesim: from the robot's centre; Stage: from its laser); 0 disables.
         ~min_gap_m (float, 1.0 m): stop while a teammate ahead is closer than this; 0 disables.
             Teammates' positions come from team_positions (Stage's lasers cannot see them).
+        Both distances are bounded by the robot's simulator (move_robot_params): turtlesim's
+        square, a laser's reach (100 m) on Stage. move_robot checks them when its first pose
+        names the simulator: FATAL naming the parameter, and exit 1, when they do not fit.
         ~cone_half_angle_rad (float, 0.35 rad): Stage's bumper looks at the beams within this
             angle of the heading (0.35 rad covers the erratic's 0.35 m width at 0.5 m).
         ~input_timeout_s (float, 2.0 s of wall time): after GO, stop (and subscribe again
             every 5 s) while the pose or, on Stage, the scan has been silent this long: the
             bumper must not drive on what it saw seconds ago (a simulator that died, a
             network cut). 0 disables.
-        ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's); not read
-            by move_robot_sync, the Stage lesson's robot, whose bumper and gap are bounded by
-            move_robot_params.STAGE_MAX_DISTANCE_M (100 m) instead.
+        ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's; the bumper
+            stays below half of it); no part on Stage, and not read by move_robot_sync.
         ~announce_period_s (float, 1.0 s): ready re-announcement period until GO.
         ~report_period_s (float, 5.0 s): how often the nearest teammate is logged.
     """
@@ -73,8 +76,10 @@ class MoveRobotNode:
     def __init__(self, robot_id, config, simulator=None):
         self._id = robot_id
         self._cfg = config
-        self._limits = DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
-                                   config.world_size_m)
+        # How it drives: its simulator's limits, known at once (move_robot_sync) or from the
+        # first pose (_on_ready).
+        self._limits = drive_limits(config, simulator) if simulator is not None else None
+        self.refused = False  # its parameters do not fit the simulator that answered
         self._team = TeamPositions(robot_id)
         self._lock = threading.Lock()
         self._go = False
@@ -117,15 +122,41 @@ class MoveRobotNode:
 
     def announce_to(self, send):
         """Send the ready status with send (a publish function) if the robot is ready."""
-        if self._sensors.fix() is not None:
+        if self._ready():
             send(self._ready_msg())
 
+    def _ready(self):
+        """It knows where it is and what is ahead, and drives by its simulator's limits."""
+        with self._lock:
+            known = self._limits is not None
+        return known and self._sensors.fix() is not None
+
     def _on_ready(self):
+        if not self._take_limits():
+            return
         with self._lock:
             go = self._go
         if not go:
             self._status_pub.publish(self._ready_msg())
             rospy.loginfo('Robot %d published ready status', self._id)
+
+    def _take_limits(self):
+        """The limits of the simulator the first pose named (move_robot), once; False when
+        the parameters do not fit it: FATAL naming them, and the node shuts down (exit 1)."""
+        with self._lock:
+            if self._limits is not None:
+                return True
+        simulator = self._sensors.simulator()
+        try:
+            limits = drive_limits(self._cfg, simulator)
+        except ValueError as err:
+            rospy.logfatal('move_robot: %s (on %s)', err, simulator)
+            self.refused = True
+            rospy.signal_shutdown('parameters that do not fit %s' % simulator)
+            return False
+        with self._lock:
+            self._limits = limits
+        return True
 
     def _on_announce_timer(self, _event):
         with self._lock:
@@ -137,6 +168,8 @@ class MoveRobotNode:
         if missing:
             rospy.logwarn_throttle(5.0, 'Robot %d: %s' % (self._id, missing))
             self._sensors.resubscribe_if_silent(self._cfg.input_timeout_s)
+            return
+        if not self._ready():  # its limits are being taken, or refused
             return
         self._status_pub.publish(self._ready_msg())
         rospy.loginfo('Robot %d: waiting for team', self._id)
@@ -173,7 +206,7 @@ class MoveRobotNode:
     def _command_locked(self):
         """Command the robot from its latest fix; return the log lines for after the lock."""
         fix = self._sensors.fix()
-        if fix is None or self._stopped:
+        if fix is None or self._limits is None or self._stopped:
             return []
         stale = self._sensors.stale(self._cfg.input_timeout_s) \
             if self._cfg.input_timeout_s > 0.0 else ''
@@ -268,5 +301,7 @@ def main(argv=None, simulator=None):
     init_node('move_robot_%d' % robot_id)
     config = load_or_exit(lambda: load_config(rospy.get_param, simulator), 'move_robot')
     rospy.loginfo('Robot %d: %s', robot_id, config)
-    MoveRobotNode(robot_id, config, simulator)
+    node = MoveRobotNode(robot_id, config, simulator)
     rospy.spin()
+    if node.refused:
+        sys.exit(1)

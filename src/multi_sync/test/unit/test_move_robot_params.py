@@ -2,7 +2,12 @@
 import pytest
 from course_common.params import ParamError
 from multi_sync.motion import STAGE, TURTLESIM, WORLD_SIZE_M, DriveLimits
-from multi_sync.move_robot_params import STAGE_MAX_DISTANCE_M, MoveRobotConfig, load_config
+from multi_sync.move_robot_params import (
+    STAGE_MAX_DISTANCE_M,
+    MoveRobotConfig,
+    drive_limits,
+    load_config,
+)
 
 
 def server(**params):
@@ -40,6 +45,8 @@ def test_stage_reads_no_world_size():
     ({'cone_half_angle_rad': 4.0}, STAGE, 'parameter ~cone_half_angle_rad = 4.0'),
     ({'stop_distance_m': 150.0}, STAGE,
      'parameter ~stop_distance_m = 150.0: expected a finite number in [0, 100]'),
+    ({'stop_distance_m': 150.0}, None,  # beyond both simulators' bounds: refused at once
+     'parameter ~stop_distance_m = 150.0: expected a finite number in [0, 100]'),
     ({'min_gap_m': 100.5}, STAGE, 'parameter ~min_gap_m = 100.5: expected a finite number in '
      '[0, 100]'),
     ({'stop_distance_m': 8.0}, TURTLESIM,
@@ -57,3 +64,49 @@ def test_bad_values_are_refused_by_name(params, simulator, text):
 def test_stage_bounds_the_distances_by_a_lasers_reach(distance):
     config = load_config(server(stop_distance_m=distance, min_gap_m=distance), STAGE)
     assert (config.stop_distance_m, config.min_gap_m) == (distance, distance)
+
+
+@pytest.mark.parametrize('params', [
+    {'stop_distance_m': 8.0}, {'min_gap_m': 20.0}, {'stop_distance_m': 50.0, 'min_gap_m': 100.0},
+])
+def test_move_robot_loads_stages_distances_before_its_simulator_is_known(params):
+    # move_robot (either simulator): its first pose names the simulator, after the load.
+    config = load_config(server(**params), None)
+    for name, value in params.items():
+        assert getattr(config, name) == value
+
+
+@pytest.mark.parametrize('params', [
+    {}, {'stop_distance_m': 8.0}, {'min_gap_m': 20.0}, {'world_size_m': 0.5},
+    {'stop_distance_m': STAGE_MAX_DISTANCE_M, 'min_gap_m': STAGE_MAX_DISTANCE_M},
+])
+def test_on_stage_move_robot_drives_by_stages_bounds(params):
+    config = load_config(server(**params), None)
+    limits = drive_limits(config, STAGE)
+    assert (limits.speed_mps, limits.stop_distance_m, limits.min_gap_m) == \
+        (config.speed_mps, config.stop_distance_m, config.min_gap_m)
+    assert limits.world_size_m is None  # no square on Stage
+
+
+@pytest.mark.parametrize('params, text', [
+    ({'stop_distance_m': 8.0},
+     'parameter ~stop_distance_m = 8.0: expected a finite number in [0, 5.54444]'),
+    ({'min_gap_m': 20.0}, 'parameter ~min_gap_m = 20.0: expected a finite number in [0, 11.0889]'),
+    ({'world_size_m': 0.5}, 'parameters ~stop_distance_m and ~world_size_m: '
+     'stop_distance_m must be less than half the world (0.5 m), got 0.5'),
+])
+def test_on_turtlesim_move_robot_refuses_what_does_not_fit_the_square(params, text):
+    config = load_config(server(**params), None)
+    with pytest.raises(ValueError) as err:
+        drive_limits(config, TURTLESIM)
+    assert text in str(err.value)
+
+
+@pytest.mark.parametrize('params, stop_m, world_m', [
+    ({}, 0.5, WORLD_SIZE_M),
+    ({'stop_distance_m': 5.5}, 5.5, WORLD_SIZE_M),
+    ({'stop_distance_m': 2.0, 'world_size_m': 4.5}, 2.0, 4.5),
+])
+def test_on_turtlesim_move_robot_drives_in_its_square(params, stop_m, world_m):
+    limits = drive_limits(load_config(server(**params), None), TURTLESIM)
+    assert (limits.stop_distance_m, limits.world_size_m) == (stop_m, world_m)
