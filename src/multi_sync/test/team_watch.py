@@ -4,7 +4,6 @@ import time
 
 import rospy
 from course_common.processes import ChildProcess
-from course_common.processes import run_to_exit as run_command
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 from turtlesim.msg import Pose
@@ -108,7 +107,3 @@ class NodeProcess(ChildProcess):
         super().__init__(['rosrun', 'multi_sync', *args], env=env)
         self.start()
 
-
-def run_to_exit(args, timeout_s=60.0, env=None):
-    """Run rosrun multi_sync ARGS to completion; return (exit code, stdout + stderr)."""
-    return run_command(['rosrun', 'multi_sync', *args], timeout_s, env=env)

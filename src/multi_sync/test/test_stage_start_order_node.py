@@ -38,6 +38,8 @@ MIN_GAP_M = 1.0  # move_robot's default teammate gap, between poses
 KILL_AFTER_M = 0.2  # robot_0 is stopped this far into its drive: ~1.2 m short of its bumper
 GAP_LINE = re.compile(r'^Robot 1: robot 0 is ([\d.]+) m ahead, waiting$')
 INPUT_TIMEOUT_S = 2.0  # move_robot's default ~input_timeout_s: silent inputs stop a robot
+# A bumper beyond turtlesim's 5.54 m half square, within Stage's 100 m (a laser's reach)
+FAR_STOP_DISTANCE_M = 8.0
 
 
 class TestStageStartOrder(unittest.TestCase):
@@ -226,6 +228,28 @@ class TestStageStartOrder(unittest.TestCase):
         self.check_stops(stalls=False)
         self.assertEqual(len(watch.gos()), 1, 'one GO: the robots never needed another')
         self.assertEqual(info_texts(monitor.lines()).count('All robots GO!'), 1, monitor.tail())
+
+    def test_move_robot_takes_a_bumper_beyond_turtlesims_square(self):
+        # move_robot (either simulator), not the lesson's move_robot_sync: its first pose
+        # names Stage, which bounds the bumper by a laser's reach, not by turtlesim's 5.54 m.
+        watch = self.watch
+        self.start_stage()
+        robot = NodeProcess('move_robot', '0', '_stop_distance_m:=%g' % FAR_STOP_DISTANCE_M,
+                            '__name:=move_robot_far')
+        self._procs['robot'].append(robot)
+        robot.wait_line('Robot 0 published ready status', START_S)
+        self.assertTrue(robot.printed('Robot 0: driven by Stage'), robot.tail())
+        self.assertTrue(robot.printed('stop_distance_m=%.1f' % FAR_STOP_DISTANCE_M), robot.tail())
+        monitor = NodeProcess('monitor', '1')
+        self._procs['monitor'].append(monitor)
+        line = robot.wait_line('Robot 0: laser: obstacle', EVENT_S)
+        # The hall's wall, about 1.8 m ahead, is inside this bumper from the start (the
+        # default 0.5 m would let the robot drive): no motion at all.
+        ahead = float(line.split('obstacle ')[1].split(' m')[0])
+        self.assertTrue(STOP_DISTANCE_M < ahead < FAR_STOP_DISTANCE_M, line)
+        self.assertEqual(watch.nonzero_cmds(0), [], robot.tail())
+        self.assertTrue(watch.still_since_first(0), 'robot_0 moved')
+        self.assertTrue(robot.alive(), robot.tail())
 
     # --- shared checks -------------------------------------------------------------------
     def check_one_go(self, monitor, robots, patterns=None):

@@ -82,6 +82,31 @@ class TestStartOrder(unittest.TestCase):
         self.assertIsNone(monitor.returncode, monitor.lines())
         watch.close()
 
+    def test_move_robot_refuses_on_turtlesim_what_fits_stage_only(self):
+        # move_robot takes either simulator: a bumper of 8 m fits Stage (a laser's reach) but
+        # not turtlesim's 11.09 m square. The first pose names turtlesim: FATAL, exit 1.
+        watch = TeamWatch(5)
+        self.addCleanup(watch.close)
+        wait_for(watch.have_poses, START_S, 'the five turtles')
+        cases = (('_stop_distance_m:=8',
+                  'parameter ~stop_distance_m = 8.0: expected a finite number in [0, 5.54444]'),
+                 ('_world_size_m:=0.5', 'parameters ~stop_distance_m and ~world_size_m'))
+        for k, (param, text) in enumerate(cases):
+            with self.subTest(param=param):
+                # A node name of its own per case: private parameters stay on the master.
+                robot = self.start('move_robot', '1', param, '__name:=refused_%d' % k)
+                code = robot.wait_exit(START_S)
+                output = robot.output()
+                self.assertEqual(code, 1, output)
+                self.assertIn('Robot 1: driven by turtlesim', output)
+                fatal = [line for line in output.splitlines() if '[FATAL]' in line]
+                self.assertEqual(len(fatal), 1, output)
+                self.assertIn('move_robot: %s' % text, fatal[0])
+                self.assertIn('(on turtlesim)', fatal[0])
+                self.assertNotIn('published ready status', output)
+                self.assertNotIn('Traceback', output)
+        self.assertEqual(watch.ready_counts.get(1, 0), 0, 'a refused robot announced ready')
+
     def test_one_go_for_a_subscriber_connecting_as_go_goes_out(self):
         # The flake "2 != 1 : one GO" made deterministic. This test node is robot 0 of a team
         # of one in /race: it reports ready before it subscribes, so the monitor's GO waits

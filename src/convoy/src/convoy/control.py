@@ -15,10 +15,9 @@ the error is wrapped into [-pi, pi) before the gain is applied, so it always tur
 Units: metres, radians, seconds; angles counter-clockwise from +x (turtlesim's frame).
 """
 import math
-from dataclasses import dataclass
 
 from course_common.angles import wrap_angle
-from course_common.finite import check_fields
+from course_common.finite import finite_dataclass
 from course_common.planar import STOP, Command, is_finite_pose
 
 # The course's solution values.
@@ -29,16 +28,13 @@ DEFAULT_TOLERANCE_M = 1.5  # m: closer than this the follower stops
 MAX_TURN_WHILE_DRIVING_RADPS = 1.0
 
 
-@dataclass(frozen=True)
+@finite_dataclass(low=0.0)
 class Gains:
-    """The control law's constants; validated on construction (ValueError)."""
+    """The control law's constants, each finite and >= 0 (ValueError on construction)."""
 
     kp_lv: float = DEFAULT_KP_LV
     kp_av: float = DEFAULT_KP_AV
     tolerance_m: float = DEFAULT_TOLERANCE_M
-
-    def __post_init__(self):
-        check_fields(self, low=0.0)
 
 
 def distance(leader, follower):

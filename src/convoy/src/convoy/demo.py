@@ -7,7 +7,6 @@ time, saves the simulator's canvas and a picture of rviz showing the convoy (rvi
 a private Xvfb), stops everything, then makes the summary table and the trail and gap plots
 from the bag with bag_report's code.
 """
-import argparse
 import os
 import sys
 import time
@@ -15,6 +14,7 @@ import time
 import rosgraph
 import rospkg
 import rospy
+from course_common.demo_cli import bounded, demo_main, demo_parser
 from course_common.private_launch import PrivateMasterLaunch
 from course_common.rviz.snapshot import snapshot
 from course_common.startup import init_node
@@ -34,24 +34,17 @@ SERVICE_TIMEOUT_S = 10.0
 
 def parse_args(argv):
     """Parses and checks the command line (argparse exits 2 with a message on bad input)."""
-    parser = argparse.ArgumentParser(
-        prog='convoy_demo', description='Run the convoy with its autopilot leader, headless, '
-        'and write a picture of the trails and a plot of the gaps.')
-    parser.add_argument('--out', required=True, help='directory for the bag, the PNGs and the logs')
-    parser.add_argument('--duration', type=float, default=DEFAULT_DURATION_S,
+    parser = demo_parser('convoy_demo', 'Run the convoy with its autopilot leader, headless, '
+                         'and write a picture of the trails and a plot of the gaps.',
+                         'directory for the bag, the PNGs and the logs')
+    parser.add_argument('--duration', type=bounded(float, 1.0, MAX_DURATION_S, 's'),
+                        default=DEFAULT_DURATION_S,
                         help='seconds to record once every robot is up (default %(default)s)')
-    parser.add_argument('--n', type=int, default=3,
+    parser.add_argument('--n', type=bounded(int, 2, 10), default=3,
                         help='robots in the convoy, leader included, 2..10 (default 3: the '
                         "course's convoy.launch)")
     parser.add_argument('--gui', action='store_true', help="open the simulator's window")
-    args = parser.parse_args(argv)
-    if not 2 <= args.n <= 10:
-        parser.error('--n must be an integer from 2 to 10, got %d' % args.n)
-    if not 1.0 <= args.duration <= MAX_DURATION_S:
-        parser.error('--duration must be between 1 and %g s, got %g'
-                     % (MAX_DURATION_S, args.duration))
-    args.out = os.path.abspath(args.out)
-    return args
+    return parser.parse_args(argv)
 
 
 def save_canvas(path):
@@ -151,9 +144,4 @@ def run(args):
 
 def main():
     """Entry point of convoy_demo."""
-    args = parse_args(sys.argv[1:])
-    try:
-        sys.exit(run(args))
-    except KeyboardInterrupt:
-        print('convoy_demo: interrupted', file=sys.stderr)
-        sys.exit(130)
+    demo_main('convoy_demo', parse_args, run)

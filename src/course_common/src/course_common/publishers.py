@@ -1,5 +1,6 @@
-"""Publishers without a send queue, through rospy's public API; a publisher's lost
-subscribers found and given the publisher again (LostSubscribers)."""
+"""Publishers without a send queue, through rospy's public API; a greeting for each new
+subscriber (OnNewSubscriber); a publisher's lost subscribers found and given the publisher
+again (LostSubscribers)."""
 import time
 import warnings
 
@@ -26,6 +27,23 @@ def unqueued_publisher(name, data_class, **kwargs):
     with warnings.catch_warnings():
         warnings.filterwarnings('ignore', message=QUEUE_SIZE_WARNING, category=SyntaxWarning)
         return rospy.Publisher(name, data_class, queue_size=None, **kwargs)
+
+
+class OnNewSubscriber(rospy.SubscribeListener):
+    """A Publisher's subscriber_listener that calls callback(send) as each subscriber connects.
+
+    send is rospy's peer_publish for that connection: send(msg) reaches that subscriber alone,
+    so a late joiner can be greeted without repeating the message to everyone (multi_sync:
+    a robot's ready status to a monitor that starts late, the monitor's GO to a robot that
+    subscribes after it).
+    """
+
+    def __init__(self, callback):
+        super().__init__()
+        self._callback = callback
+
+    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
+        self._callback(peer_publish)
 
 
 def still_unconnected(listed, connected, own_name, earlier):

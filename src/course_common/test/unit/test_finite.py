@@ -1,9 +1,10 @@
 """Unit tests of course_common.finite: the one "finite, non-bool number" check."""
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import pytest
-from course_common.finite import check_fields, check_finite, is_finite_number
+from course_common.finite import check_fields, check_finite, finite_dataclass, is_finite_number
 
 
 @pytest.mark.parametrize('value', [0, 0.0, -3, 2.5, 1e308, -1e-308])
@@ -77,3 +78,51 @@ def test_check_fields_names_the_first_bad_field(gains, low, low_open, text):
 def test_check_fields_wants_a_dataclass_instance(obj):
     with pytest.raises(ValueError, match='expected a dataclass instance'):
         check_fields(obj)
+
+
+@finite_dataclass
+class _AnyFinite:
+    a: float = -1.0
+    b: float = 0.0
+
+
+@finite_dataclass(low=0.0, low_open=True)
+class _Positive:
+    a: float = 1.0
+    b: float = 2.0
+
+
+@finite_dataclass(low=0.0)
+class _Ordered:
+    """Its own __post_init__ ties the fields together; it runs after the fields' check."""
+
+    low: float = 0.0
+    high: float = 1.0
+
+    def __post_init__(self):
+        if self.high < self.low:
+            raise ValueError('high must be >= low')
+
+
+@pytest.mark.parametrize('make, text', [
+    (lambda: _AnyFinite(b=math.inf), 'b = inf: expected a finite number'),
+    (lambda: _AnyFinite(a=True), 'a = True: expected a finite number'),
+    (lambda: _Positive(b=0.0), 'b = 0.0: expected a finite number > 0'),
+    (lambda: _Ordered(low=-1.0), 'low = -1.0: expected a finite number >= 0'),  # before its own
+    (lambda: _Ordered(low=math.nan, high=0.5), 'low = nan: expected a finite number >= 0'),
+    (lambda: _Ordered(low=2.0), 'high must be >= low'),
+])
+def test_finite_dataclass_checks_the_fields_then_its_own_rule(make, text):
+    with pytest.raises(ValueError) as err:
+        make()
+    assert str(err.value) == text
+
+
+@pytest.mark.parametrize('cls, values', [
+    (_AnyFinite, (-1.0, 0.0)), (_Positive, (1.0, 2.0)), (_Ordered, (0.0, 1.0)),
+])
+def test_finite_dataclass_is_a_frozen_dataclass_with_its_defaults(cls, values):
+    obj = cls()
+    assert dataclasses.astuple(obj) == values
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        setattr(obj, dataclasses.fields(obj)[0].name, 5.0)

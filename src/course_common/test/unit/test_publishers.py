@@ -3,7 +3,7 @@ import subprocess
 import sys
 
 import pytest
-from course_common.publishers import still_unconnected
+from course_common.publishers import OnNewSubscriber, still_unconnected
 
 RUN_TIMEOUT_S = 60.0  # a fresh interpreter importing rospy; generous on a loaded machine
 
@@ -56,3 +56,17 @@ def test_a_bad_option_is_rospys_error():
 ])
 def test_still_unconnected(listed, connected, earlier, missing, lost):
     assert still_unconnected(listed, connected, '/me', earlier) == (missing, lost)
+
+
+def test_on_new_subscriber_hands_over_that_subscribers_own_send():
+    sends = []
+    listener = OnNewSubscriber(sends.append)
+
+    def to_everyone(msg):
+        raise AssertionError('the greeting went to every subscriber')
+
+    def to_this_one(msg):
+        return msg
+    listener.peer_subscribe('/team_status', to_everyone, to_this_one)
+    listener.peer_unsubscribe('/team_status', 0)  # a subscriber leaving is no new one
+    assert sends == [to_this_one]

@@ -1,6 +1,6 @@
 """Unit tests of course_common.testing's pure helpers: results_dir, number checks, INFO lines,
-ScratchDirTestCase, free_port, Xvfb's display number (and one real Xvfb, when installed), stamps,
-LogRecorder's copies of a latched line."""
+ScratchDirTestCase, check_refused, free_port, Xvfb's display number (and one real Xvfb, when
+installed), stamps, LogRecorder's copies of a latched line."""
 import os
 import re
 import shutil
@@ -12,6 +12,7 @@ from course_common.ports import free_port
 from course_common.processes import rospy_texts
 from course_common.testing import (
     ScratchDirTestCase,
+    check_refused,
     consecutive,
     info_texts,
     numbers_in,
@@ -100,6 +101,33 @@ def test_scratch_dir_made_and_removed():
     assert result.wasSuccessful(), result.failures + result.errors
     assert os.path.basename(_Scratch.tmp).startswith('scratch_unit_')
     assert not os.path.exists(_Scratch.tmp)
+
+
+def _refusal(script):
+    """A command line that prints 'refused' and ends with `script`'s exit."""
+    return (['sh', '-c', 'echo refused; ' + script], 'refused')
+
+
+@pytest.mark.parametrize('script, failed', [
+    ('exit 1', False),                                    # a refusal: exit 1, the message
+    ('exit 0', True),                                     # accepted: no refusal
+    ('exit 2', True),                                     # another status than the nodes' 1
+    ('echo Traceback; exit 1', True),                     # a crash that happens to exit 1
+])
+def test_check_refused_fails_the_subtest_of_each_bad_case(script, failed):
+    cases = [_refusal('exit 1'), _refusal(script), (['sh', '-c', 'exit 1'], 'refused')]
+
+    class _Refusals(unittest.TestCase):
+        def test_refusals(self):
+            check_refused(self, cases, timeout_s=10.0)
+
+    result = unittest.TestResult()
+    unittest.defaultTestLoader.loadTestsFromTestCase(_Refusals).run(result)
+    # The third case never prints its message: its subTest fails, and only it (and the
+    # second, when bad), each named by its argv.
+    failed_argvs = [str(test.params['argv']) for test, _ in result.failures]
+    expected = [str(c[0]) for c in (cases[1:] if failed else cases[2:])]
+    assert failed_argvs == expected, result.failures
 
 
 def test_free_port_can_be_bound():

@@ -4,7 +4,7 @@ import time
 
 import rospy
 from course_common.command_line import parse_argv_or_exit
-from course_common.publishers import unqueued_publisher
+from course_common.publishers import OnNewSubscriber, unqueued_publisher
 from course_common.robot_ids import parse_team_size
 from course_common.rospy_internals import caller_id, connection_ids
 from course_common.startup import init_node
@@ -31,17 +31,6 @@ CONNECT_WAIT_S = 3.0
 READY_SETTLE_S = 0.5
 # How often a pending GO checks its conditions and the deadline above (wall clock).
 CHECK_PERIOD_S = 0.05
-
-
-class _GoOnConnect(rospy.SubscribeListener):
-    """Hands each new team_status subscriber's own publish function to the monitor."""
-
-    def __init__(self, callback):
-        super().__init__()
-        self._callback = callback
-
-    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
-        self._callback(peer_publish)
 
 
 class MonitorNode:
@@ -73,7 +62,7 @@ class MonitorNode:
         self._go_not_before = 0.0  # the last ready's arrival + READY_SETTLE_S (monotonic)
         # Synchronous: GO goes out to every robot from this thread in one pass.
         self._pub = unqueued_publisher('team_status', RobotStatus,
-                                       subscriber_listener=_GoOnConnect(self._on_subscriber))
+                                       subscriber_listener=OnNewSubscriber(self._on_subscriber))
         rospy.loginfo('Waiting for robots to connect...')
         self._sub = rospy.Subscriber('team_status', RobotStatus, self._on_status,
                                      queue_size=STATUS_QUEUE, tcp_nodelay=True)

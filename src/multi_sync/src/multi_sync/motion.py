@@ -15,6 +15,9 @@ from course_common.robot_ids import MAX_ROBOTS, valid_robot_id
 
 # The lesson's robots stand 2 m apart in a 2x2 square; the grid keeps that spacing.
 GRID_STEP_M = 2.0
+# The two simulators a robot drives on (its first pose names it: multi_sync.robot_sensors).
+TURTLESIM = 'turtlesim'
+STAGE = 'Stage'
 
 
 def _check_finite(**values):

@@ -1,21 +1,20 @@
 """The lesson's move_robot: announce ready, wait for the monitor's GO, drive forward safely."""
-import math
+import sys
 import threading
 import time
-from dataclasses import dataclass
 
 import rospy
 from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
-from course_common.params import check_number
-from course_common.publishers import LostSubscribers, unqueued_publisher
+from course_common.publishers import LostSubscribers, OnNewSubscriber, unqueued_publisher
 from course_common.robot_ids import parse_robot_id
 from course_common.startup import init_node
 from geometry_msgs.msg import Twist
 
-from multi_sync.motion import WORLD_SIZE_M, Decision, DriveLimits, TeamPositions, decide
+from multi_sync.motion import TURTLESIM, Decision, TeamPositions, decide
+from multi_sync.move_robot_params import drive_limits, load_config
 from multi_sync.msg import RobotPosition, RobotStatus
-from multi_sync.robot_sensors import STAGE, TURTLESIM, RobotSensors
+from multi_sync.robot_sensors import RobotSensors
 from multi_sync.team import MONITOR_FRAME_ID
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
@@ -23,76 +22,6 @@ SHARED_QUEUE = 100
 # A GO stamped this close to the wall clock was stamped on wall time, like this robot's log
 # line; on the Stage lesson the monitor runs on sim time, which starts at 0.
 WALL_STAMP_S = 3600.0
-
-
-@dataclass(frozen=True)
-class MoveRobotConfig:
-    """move_robot's private parameters (see MoveRobotNode); how it drives defaults to
-    DriveLimits' (the one place of the lesson's 0.2 m/s, 0.5 m and 1.0 m)."""
-
-    speed_mps: float = DriveLimits.speed_mps
-    rate_hz: float = 10.0
-    stop_distance_m: float = DriveLimits.stop_distance_m
-    min_gap_m: float = DriveLimits.min_gap_m
-    cone_half_angle_rad: float = 0.35
-    input_timeout_s: float = 2.0
-    world_size_m: float = DriveLimits.world_size_m
-    announce_period_s: float = 1.0
-    report_period_s: float = 5.0
-
-
-#: On Stage, the bumper and the gap are bounded by what a laser can see, not by a square.
-STAGE_MAX_DISTANCE_M = 100.0
-
-# name: (lowest, highest, lowest allowed?) for each parameter; every one must be finite.
-_RANGES = {
-    'speed_mps': (0.0, 10.0, False),
-    'rate_hz': (0.0, 1000.0, False),
-    'stop_distance_m': (0.0, WORLD_SIZE_M / 2, True),
-    'min_gap_m': (0.0, WORLD_SIZE_M, True),
-    'cone_half_angle_rad': (0.0, math.pi, False),
-    'input_timeout_s': (0.0, 3600.0, True),
-    'world_size_m': (0.0, 1000.0, False),
-    'announce_period_s': (0.0, 60.0, False),
-    'report_period_s': (0.0, 3600.0, False),
-}
-
-
-def load_config(get_param=rospy.get_param, simulator=None):
-    """Read and check the private parameters; raise ValueError (ParamError) naming the bad one.
-
-    simulator STAGE (the Stage lesson's move_robot_sync): the distances are bounded by
-    STAGE_MAX_DISTANCE_M instead of turtlesim's square, and ~world_size_m is not read."""
-    ranges = dict(_RANGES)
-    if simulator == STAGE:
-        del ranges['world_size_m']
-        ranges['stop_distance_m'] = (0.0, STAGE_MAX_DISTANCE_M, True)
-        ranges['min_gap_m'] = (0.0, STAGE_MAX_DISTANCE_M, True)
-    values = {}
-    for name, (low, high, low_ok) in ranges.items():
-        values[name] = check_number('~' + name,
-                                    get_param('~' + name, getattr(MoveRobotConfig, name)),
-                                    low, high, low_open=not low_ok)
-    if simulator == STAGE:
-        values['world_size_m'] = None
-    config = MoveRobotConfig(**values)
-    try:
-        DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
-                    config.world_size_m)
-    except ValueError as err:
-        raise ValueError('parameters ~stop_distance_m and ~world_size_m: %s' % err) from None
-    return config
-
-
-class _AnnounceOnConnect(rospy.SubscribeListener):
-    """Sends the robot's ready status to each new team_status subscriber as it connects."""
-
-    def __init__(self, node):
-        super().__init__()
-        self._node = node
-
-    def peer_subscribe(self, topic_name, topic_publish, peer_publish):
-        self._node.announce_to(peer_publish)
 
 
 class MoveRobotNode:
@@ -129,15 +58,17 @@ class MoveRobotNode:
             ahead (turtlesim: from the robot's centre; Stage: from its laser); 0 disables.
         ~min_gap_m (float, 1.0 m): stop while a teammate ahead is closer than this; 0 disables.
             Teammates' positions come from team_positions (Stage's lasers cannot see them).
+        Both distances are bounded by the robot's simulator (move_robot_params): turtlesim's
+        square, a laser's reach (100 m) on Stage. move_robot checks them when its first pose
+        names the simulator: FATAL naming the parameter, and exit 1, when they do not fit.
         ~cone_half_angle_rad (float, 0.35 rad): Stage's bumper looks at the beams within this
             angle of the heading (0.35 rad covers the erratic's 0.35 m width at 0.5 m).
         ~input_timeout_s (float, 2.0 s of wall time): after GO, stop (and subscribe again
             every 5 s) while the pose or, on Stage, the scan has been silent this long: the
             bumper must not drive on what it saw seconds ago (a simulator that died, a
             network cut). 0 disables.
-        ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's); not read
-            by move_robot_sync, the Stage lesson's robot, whose bumper and gap are bounded by
-            STAGE_MAX_DISTANCE_M (100 m) instead.
+        ~world_size_m (float, 11.088889 m): side of the square world (turtlesim's; the bumper
+            stays below half of it); no part on Stage, and not read by move_robot_sync.
         ~announce_period_s (float, 1.0 s): ready re-announcement period until GO.
         ~report_period_s (float, 5.0 s): how often the nearest teammate is logged.
     """
@@ -145,8 +76,10 @@ class MoveRobotNode:
     def __init__(self, robot_id, config, simulator=None):
         self._id = robot_id
         self._cfg = config
-        self._limits = DriveLimits(config.speed_mps, config.stop_distance_m, config.min_gap_m,
-                                   config.world_size_m)
+        # How it drives: its simulator's limits, known at once (move_robot_sync) or from the
+        # first pose (_on_ready).
+        self._limits = drive_limits(config, simulator) if simulator is not None else None
+        self.refused = False  # its parameters do not fit the simulator that answered
         self._team = TeamPositions(robot_id)
         self._lock = threading.Lock()
         self._go = False
@@ -166,7 +99,7 @@ class MoveRobotNode:
         self._cmd_lost = LostSubscribers(self._cmd_pub, describe='Robot %d: %%s' % robot_id)
         self._pos_pub = rospy.Publisher('team_positions', RobotPosition, queue_size=10)
         self._status_pub = rospy.Publisher('team_status', RobotStatus, queue_size=10,
-                                           subscriber_listener=_AnnounceOnConnect(self))
+                                           subscriber_listener=OnNewSubscriber(self.announce_to))
         rospy.on_shutdown(self._stop)
         # reset=True: on sim time a restarted stageros sends /clock back to its start, which
         # would end a plain rospy.Timer (ROSTimeMovedBackwardsException).
@@ -189,15 +122,41 @@ class MoveRobotNode:
 
     def announce_to(self, send):
         """Send the ready status with send (a publish function) if the robot is ready."""
-        if self._sensors.fix() is not None:
+        if self._ready():
             send(self._ready_msg())
 
+    def _ready(self):
+        """It knows where it is and what is ahead, and drives by its simulator's limits."""
+        with self._lock:
+            known = self._limits is not None
+        return known and self._sensors.fix() is not None
+
     def _on_ready(self):
+        if not self._take_limits():
+            return
         with self._lock:
             go = self._go
         if not go:
             self._status_pub.publish(self._ready_msg())
             rospy.loginfo('Robot %d published ready status', self._id)
+
+    def _take_limits(self):
+        """The limits of the simulator the first pose named (move_robot), once; False when
+        the parameters do not fit it: FATAL naming them, and the node shuts down (exit 1)."""
+        with self._lock:
+            if self._limits is not None:
+                return True
+        simulator = self._sensors.simulator()
+        try:
+            limits = drive_limits(self._cfg, simulator)
+        except ValueError as err:
+            rospy.logfatal('move_robot: %s (on %s)', err, simulator)
+            self.refused = True
+            rospy.signal_shutdown('parameters that do not fit %s' % simulator)
+            return False
+        with self._lock:
+            self._limits = limits
+        return True
 
     def _on_announce_timer(self, _event):
         with self._lock:
@@ -209,6 +168,8 @@ class MoveRobotNode:
         if missing:
             rospy.logwarn_throttle(5.0, 'Robot %d: %s' % (self._id, missing))
             self._sensors.resubscribe_if_silent(self._cfg.input_timeout_s)
+            return
+        if not self._ready():  # its limits are being taken, or refused
             return
         self._status_pub.publish(self._ready_msg())
         rospy.loginfo('Robot %d: waiting for team', self._id)
@@ -245,7 +206,7 @@ class MoveRobotNode:
     def _command_locked(self):
         """Command the robot from its latest fix; return the log lines for after the lock."""
         fix = self._sensors.fix()
-        if fix is None or self._stopped:
+        if fix is None or self._limits is None or self._stopped:
             return []
         stale = self._sensors.stale(self._cfg.input_timeout_s) \
             if self._cfg.input_timeout_s > 0.0 else ''
@@ -338,7 +299,9 @@ def main(argv=None, simulator=None):
     (the Stage lesson's: simulator=STAGE)."""
     robot_id = parse_argv_or_exit(parse_robot_id, argv)
     init_node('move_robot_%d' % robot_id)
-    config = load_or_exit(lambda: load_config(simulator=simulator), 'move_robot')
+    config = load_or_exit(lambda: load_config(rospy.get_param, simulator), 'move_robot')
     rospy.loginfo('Robot %d: %s', robot_id, config)
-    MoveRobotNode(robot_id, config, simulator)
+    node = MoveRobotNode(robot_id, config, simulator)
     rospy.spin()
+    if node.refused:
+        sys.exit(1)

@@ -10,10 +10,8 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
 from multi_sync.laser_ahead import nearest_ahead_m
-from multi_sync.motion import distance_to_wall
+from multi_sync.motion import STAGE, TURTLESIM, distance_to_wall
 
-TURTLESIM = 'turtlesim'
-STAGE = 'Stage'
 # Without the inputs it needs this long, the robot subscribes to them again. The master tells
 # a subscriber about a new publisher (a turtle spawned, or stageros started, after the robot)
 # once, by a publisherUpdate call; rospy does not retry a lost one, so on a loaded machine a

@@ -7,7 +7,6 @@ monitor's GO and stopped, saves stageros's picture of the world through /stage/s
 (floor plan, robots, laser beams, trails), prints what each robot did (distance driven, where
 it stopped and why, in its own log line), and stops everything as Ctrl-C would.
 """
-import argparse
 import math
 import os
 import sys
@@ -15,6 +14,7 @@ import threading
 import time
 
 import rospy
+from course_common.demo_cli import bounded, demo_main, demo_parser
 from course_common.private_launch import POLL_S, PrivateMasterLaunch
 from course_common.processes import rospy_texts
 from course_common.startup import init_node
@@ -38,18 +38,13 @@ SERVICE_TIMEOUT_S = 10.0
 
 def parse_args(argv):
     """Parses and checks the command line (argparse exits 2 with its message on bad input)."""
-    parser = argparse.ArgumentParser(
-        prog='stage_demo', description="Run the synchronisation lesson on the workspace's "
-        'Stage, headless, and write a picture of the world after GO.')
-    parser.add_argument('--out', required=True, help='directory for the picture and the logs')
-    parser.add_argument('--speed', type=float, default=DEFAULT_SPEED_MPS,
+    parser = demo_parser('stage_demo', "Run the synchronisation lesson on the workspace's "
+                         'Stage, headless, and write a picture of the world after GO.',
+                         'directory for the picture and the logs')
+    parser.add_argument('--speed', type=bounded(float, MIN_SPEED_MPS, MAX_SPEED_MPS, 'm/s'),
+                        default=DEFAULT_SPEED_MPS,
                         help="the robots' speed, m/s (default %(default)s: the lesson's)")
-    args = parser.parse_args(argv)
-    if not MIN_SPEED_MPS <= args.speed <= MAX_SPEED_MPS:
-        parser.error('--speed must be between %g and %g m/s, got %g'
-                     % (MIN_SPEED_MPS, MAX_SPEED_MPS, args.speed))
-    args.out = os.path.abspath(args.out)
-    return args
+    return parser.parse_args(argv)
 
 
 class TeamTracks:
@@ -136,9 +131,4 @@ def run(args):
 
 def main():
     """Entry point of stage_demo."""
-    args = parse_args(sys.argv[1:])
-    try:
-        sys.exit(run(args))
-    except KeyboardInterrupt:
-        print('stage_demo: interrupted', file=sys.stderr)
-        sys.exit(130)
+    demo_main('stage_demo', parse_args, run)

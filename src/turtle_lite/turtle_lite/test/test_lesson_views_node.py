@@ -109,14 +109,16 @@ class LessonViewsTest(unittest.TestCase):
                 self.assertIn(frame, graph)
 
     def test_bad_parameters_exit_with_a_clear_line(self):
-        for exe, arg, name in (('pose_to_tf', '_rate_hz:=-1', '~rate_hz'),
-                               ('pose_to_tf', '_discovery_period_s:=nan', '~discovery_period_s'),
-                               ('pose_to_tf', '_turtles:=robot1', '~turtles'),
-                               ('lesson_markers', '_trail_points:=1', '~trail_points'),
-                               ('lesson_markers', '_parent_frame:=""', '~parent_frame')):
+        cases = (('pose_to_tf', '_rate_hz:=-1', '~rate_hz'),
+                 ('pose_to_tf', '_discovery_period_s:=nan', '~discovery_period_s'),
+                 ('pose_to_tf', '_turtles:=robot1', '~turtles'),
+                 ('lesson_markers', '_trail_points:=1', '~trail_points'),
+                 ('lesson_markers', '_parent_frame:=""', '~parent_frame'))
+        for k, (exe, arg, name) in enumerate(cases):
             with self.subTest(exe=exe, arg=arg):
+                # A node name of its own per case: private parameters stay on the master.
                 result = subprocess.run(['rosrun', 'turtle_lite', exe, arg,
-                                         '__name:=bad_' + exe], stdout=subprocess.PIPE,
+                                         '__name:=bad_%s_%d' % (exe, k)], stdout=subprocess.PIPE,
                                         stderr=subprocess.STDOUT, text=True,
                                         timeout=TOOL_DEADLINE_S)
                 self.assertNotEqual(result.returncode, 0, result.stdout)

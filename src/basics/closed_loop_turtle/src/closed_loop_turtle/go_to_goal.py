@@ -27,7 +27,7 @@ from enum import Enum
 
 from course_common.angles import wrap_angle
 from course_common.arena import WORLD_SIZE_M, inside
-from course_common.finite import check_fields
+from course_common.finite import finite_dataclass
 from course_common.planar import STOP, Command
 from course_common.planar import check_pose as check_finite_pose
 
@@ -47,14 +47,7 @@ class GoalError(ValueError):
     """A goal or pose the controller refuses; the message says what was expected."""
 
 
-class _PositiveFields:
-    """Checks on construction that every field of the dataclass is a finite number > 0."""
-
-    def __post_init__(self):
-        check_fields(self, low=0.0, low_open=True)
-
-
-@dataclass(frozen=True)
+@finite_dataclass
 class Gains:
     """k_rho, k_alpha, k_beta; the lab's stability conditions are checked (ValueError)."""
 
@@ -63,7 +56,6 @@ class Gains:
     k_beta: float = DEFAULT_K_BETA
 
     def __post_init__(self):
-        check_fields(self)
         # The lab's stability conditions, in its words (the node's FATAL line quotes them).
         if self.k_rho <= 0.0:
             raise ValueError('k_rho must be > 0, got %r' % self.k_rho)
@@ -74,16 +66,16 @@ class Gains:
                              % (self.k_rho, self.k_alpha))
 
 
-@dataclass(frozen=True)
-class Tolerances(_PositiveFields):
+@finite_dataclass(low=0.0, low_open=True)
+class Tolerances:
     """When a goal counts as reached: distance (m) and heading error (rad), both > 0."""
 
     position_m: float = DEFAULT_POSITION_TOLERANCE_M
     heading_rad: float = DEFAULT_HEADING_TOLERANCE_RAD
 
 
-@dataclass(frozen=True)
-class Limits(_PositiveFields):
+@finite_dataclass(low=0.0, low_open=True)
+class Limits:
     """Top speeds, both > 0: forward (m/s) and turn rate (rad/s)."""
 
     max_linear_mps: float = DEFAULT_MAX_LINEAR_MPS

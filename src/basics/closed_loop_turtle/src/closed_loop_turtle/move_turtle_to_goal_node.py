@@ -1,77 +1,19 @@
 """ROS node of Lab 2 task two: drive the Pioneer to a goal pose (move_turtle_to_goal.py)."""
 import contextlib
 import threading
-from dataclasses import dataclass
 
 import rospy
-from course_common.arena import WORLD_SIZE_M
-from course_common.param_loader import get_private, load_or_exit
-from course_common.params import check_number
+from course_common.param_loader import load_or_exit
 from course_common.planar import Pose
 from course_common.startup import init_node
 from geometry_msgs.msg import Pose2D, Twist
 
-from closed_loop_turtle.go_to_goal import (
-    DEFAULT_HEADING_TOLERANCE_RAD,
-    DEFAULT_K_ALPHA,
-    DEFAULT_K_BETA,
-    DEFAULT_K_RHO,
-    DEFAULT_MAX_ANGULAR_RADPS,
-    DEFAULT_MAX_LINEAR_MPS,
-    DEFAULT_POSITION_TOLERANCE_M,
-    Gains,
-    GoalError,
-    Limits,
-    Phase,
-    Tolerances,
-    check_goal,
-    check_pose,
-    step,
-)
+from closed_loop_turtle.go_to_goal import GoalError, Phase, check_goal, check_pose, step
+from closed_loop_turtle.move_turtle_to_goal_params import load_config
 
 QUEUE_SIZE = 10  # the lab's command queue
-DEFAULT_RATE_HZ = 100.0  # the lab's loop sleeps 0.01 s between commands
 POSE_LOG_PERIOD_S = 1.0  # the lab logs every pose; at 62.5 Hz that floods the screen
 WARN_PERIOD_S = 5.0  # throttle for repeated warnings (bad poses, no pose yet)
-
-
-@dataclass(frozen=True)
-class ControllerConfig:
-    """move_turtle_to_goal's parameters, validated."""
-
-    gains: Gains
-    tolerances: Tolerances
-    limits: Limits
-    rate_hz: float
-    world_size_m: float
-
-
-def _number(name, default):
-    return check_number('~' + name, get_private(name, default))
-
-
-def _positive(name, default):
-    return check_number('~' + name, get_private(name, default), low=0.0, low_open=True)
-
-
-def load_config():
-    """Reads and validates the private parameters. Raises ParamError or ValueError."""
-    k_rho, k_alpha, k_beta = (_number('k_rho', DEFAULT_K_RHO), _number('k_alpha', DEFAULT_K_ALPHA),
-                              _number('k_beta', DEFAULT_K_BETA))
-    try:
-        gains = Gains(k_rho, k_alpha, k_beta)
-    except ValueError as err:
-        raise ValueError('parameters ~k_rho=%r, ~k_alpha=%r, ~k_beta=%r: %s (the lab\'s '
-                         'conditions k_rho > 0, k_beta < 0, k_alpha > k_rho)'
-                         % (k_rho, k_alpha, k_beta, err)) from None
-    return ControllerConfig(
-        gains=gains,
-        tolerances=Tolerances(_positive('position_tolerance', DEFAULT_POSITION_TOLERANCE_M),
-                              _positive('heading_tolerance', DEFAULT_HEADING_TOLERANCE_RAD)),
-        limits=Limits(_positive('max_linear_mps', DEFAULT_MAX_LINEAR_MPS),
-                      _positive('max_angular_radps', DEFAULT_MAX_ANGULAR_RADPS)),
-        rate_hz=_positive('rate_hz', DEFAULT_RATE_HZ),
-        world_size_m=_positive('world_size_m', WORLD_SIZE_M))
 
 
 def _pose(msg):

@@ -1,11 +1,13 @@
 """The tests' and benchmarks' one set of helpers.
 
-Here: the deadlines, wait_for (from course_common.waiting), pin, results_dir, and the
-process helpers tests use (ChildProcess, spawn, Xvfb, free_port, cpu_ticks, rss_mb, from
-course_common.processes, .xvfb and .ports, where tools use them too). Beside it:
-recorders (topics and /rosout), master (queries of the graph, a private roscore), turtlesim
-(turtle recorders, the teleop on a terminal, the simulator's constants), views (tf checks).
-Production code imports course_common.waiting, .processes, .ports and .xvfb, never this.
+Here: the deadlines, wait_for (from course_common.waiting), pin, results_dir,
+check_refused (bad command lines, side by side), and the process helpers tests use
+(ChildProcess, spawn, Xvfb, free_port, cpu_ticks, rss_mb, from course_common.processes, .xvfb
+and .ports, where tools use them too). Beside it: recorders (topics and /rosout), master
+(queries of the graph, a private roscore), master_calls (a master that counts its calls),
+views (tf checks); each simulator's own helpers live with it (turtle_lite.testing,
+stage_lite.testing). Production code imports course_common.waiting, .processes, .ports and
+.xvfb, never this.
 """
 import importlib.metadata
 import os
@@ -13,14 +15,23 @@ import shutil
 import sys
 import tempfile
 import unittest
+from concurrent.futures import ThreadPoolExecutor
 
 from course_common.ports import free_port
-from course_common.processes import ChildProcess, cpu_ticks, rospy_texts, rss_mb, spawn
+from course_common.processes import (
+    ChildProcess,
+    cpu_ticks,
+    rospy_texts,
+    rss_mb,
+    run_to_exit,
+    spawn,
+)
 from course_common.waiting import POLL_S, WaitError, wait_for
 from course_common.xvfb import Xvfb
 
 __all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess',
-           'ScratchDirTestCase', 'WaitError', 'Xvfb', 'cpu_ticks', 'free_port', 'pin',
+           'ScratchDirTestCase', 'WaitError', 'Xvfb', 'check_refused', 'cpu_ticks', 'free_port',
+           'pin',
            'consecutive', 'info_texts', 'numbers_in', 'results_dir', 'rospy_version', 'rss_mb',
            'spawn', 'wait_for']
 
@@ -29,6 +40,9 @@ __all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess',
 START_DEADLINE_S = 30.0  # a node or tool process coming up (rosrun + Python start-up)
 EVENT_DEADLINE_S = 15.0  # something that should follow promptly (a message, a log line, an exit)
 GTEST_OUTPUT = '--gtest_output=xml:'
+# Command lines checked side by side: each run is mostly Python start-up, so a few at a time
+# save most of the wait and leave a core to the rest of the machine.
+REFUSAL_WORKERS = 3
 
 
 def results_dir(argv=None):
@@ -68,6 +82,19 @@ def numbers_in(texts, pattern, kind=int):
 def consecutive(values):
     """True for a non-empty run of consecutive integers (n, n+1, n+2, ...)."""
     return bool(values) and list(values) == list(range(values[0], values[0] + len(values)))
+
+
+def check_refused(test, cases, timeout_s=START_DEADLINE_S, workers=REFUSAL_WORKERS):
+    """Runs the argv of each (argv, expected text) of cases to its end, workers at a time, and
+    checks each in a subTest of the unittest.TestCase test: exit status 1, the expected text
+    in its output, no Traceback (a refusal a user can act on, not a crash)."""
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        results = list(pool.map(lambda case: run_to_exit(case[0], timeout_s), cases))
+    for (argv, expected), (code, output) in zip(cases, results, strict=True):
+        with test.subTest(argv=argv):
+            test.assertEqual(code, 1, output)
+            test.assertIn(expected, output)
+            test.assertNotIn('Traceback', output)
 
 
 class ScratchDirTestCase(unittest.TestCase):

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.arena import arena_outline
 from course_common.param_loader import get_private, load_or_exit
-from course_common.params import check_int, check_name, check_namespace, check_number
+from course_common.params import check_int, check_number
 from course_common.rviz.colours import ARENA_RGB, robot_color
 from course_common.startup import init_node
 from course_common.trail import Trail
@@ -14,7 +14,7 @@ from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
-from turtle_lite.pose_watch import PoseWatch
+from turtle_lite.pose_watch import PoseWatch, WatchParams, load_watch_params
 
 LINE_WIDTH_M = 0.05
 ARROW_SIZE_M = (0.8, 0.15, 0.15)  # length, shaft and head diameter: a turtle is about 0.5 m
@@ -27,26 +27,21 @@ WARN_PERIOD_S = 5.0
 class LessonMarkersConfig:
     """lesson_markers' parameters, validated."""
 
-    parent_frame: str
-    namespace: str
+    watch: WatchParams
     trail_points: int
     trail_spacing_m: float
     rate_hz: float
-    discovery_period_s: float
 
 
 def load_config():
     """Reads and validates the private parameters. Raises ParamError naming the bad one."""
     return LessonMarkersConfig(
-        parent_frame=check_name('~parent_frame', get_private('parent_frame', 'world')),
-        namespace=check_namespace('~namespace', get_private('namespace', '/')),
+        watch=load_watch_params(),
         trail_points=check_int(
             '~trail_points', get_private('trail_points', 600), low=2, high=100000),
         trail_spacing_m=check_number(
             '~trail_spacing_m', get_private('trail_spacing_m', 0.05), low=0.0),
-        rate_hz=check_number('~rate_hz', get_private('rate_hz', 5.0), low=0.0, low_open=True),
-        discovery_period_s=check_number(
-            '~discovery_period_s', get_private('discovery_period_s', 0.5), low=0.0, low_open=True))
+        rate_hz=check_number('~rate_hz', get_private('rate_hz', 5.0), low=0.0, low_open=True))
 
 
 def _color(rgb, alpha=1.0):
@@ -91,12 +86,11 @@ class LessonMarkers:
         self._deleted = []
         self._pub = rospy.Publisher('lesson_markers', MarkerArray, queue_size=1)
         self._arena = self._arena_marker()
-        self._watch = PoseWatch(config.namespace, (), config.discovery_period_s,
-                                self._on_pose, self._on_gone)
+        self._watch = PoseWatch(config.watch, (), self._on_pose, self._on_gone)
         self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz), self._publish)
 
     def _arena_marker(self):
-        m = _marker('arena', 0, self._config.parent_frame, Marker.LINE_STRIP)
+        m = _marker('arena', 0, self._config.watch.parent_frame, Marker.LINE_STRIP)
         m.scale.x = LINE_WIDTH_M
         m.color = _color(ARENA_RGB)
         m.points = [Point(x, y, 0.0) for x, y in arena_outline()]
@@ -134,7 +128,7 @@ class LessonMarkers:
         name.text = frame
         markers = [arrow, name]
         if len(trail_points) >= 2:  # a line strip needs two points
-            trail = _marker('trail', marker_id, self._config.parent_frame, Marker.LINE_STRIP)
+            trail = _marker('trail', marker_id, self._config.watch.parent_frame, Marker.LINE_STRIP)
             trail.scale.x = LINE_WIDTH_M
             trail.color = _color(rgb, 0.8)
             trail.points = [Point(x, y, 0.0) for x, y in trail_points]
@@ -151,7 +145,7 @@ class LessonMarkers:
             out.markers.extend(self._robot_markers(frame, marker_id, points))
         for marker_id in deleted:
             for ns in ('robot', 'name', 'trail'):
-                gone = _marker(ns, marker_id, self._config.parent_frame, Marker.ARROW)
+                gone = _marker(ns, marker_id, self._config.watch.parent_frame, Marker.ARROW)
                 gone.action = Marker.DELETE
                 out.markers.append(gone)
         self._pub.publish(out)
@@ -165,7 +159,7 @@ def main():
     init_node('lesson_markers')
     config = load_or_exit(load_config, 'lesson_markers')
     rospy.loginfo('lesson_markers: arena, arrows and trails (%d points) in %s at %g Hz',
-                  config.trail_points, config.parent_frame, config.rate_hz)
+                  config.trail_points, config.watch.parent_frame, config.rate_hz)
     node = LessonMarkers(config)
     rospy.on_shutdown(node.shutdown)
     rospy.spin()

@@ -6,11 +6,11 @@ from dataclasses import dataclass
 import rospy
 import tf2_ros
 from course_common.param_loader import get_private, load_or_exit
-from course_common.params import check_name, check_name_list, check_namespace, check_number
+from course_common.params import check_name_list, check_number
 from course_common.startup import init_node
 from geometry_msgs.msg import TransformStamped
 
-from turtle_lite.pose_watch import PoseWatch
+from turtle_lite.pose_watch import PoseWatch, WatchParams, load_watch_params
 from turtle_lite.team_frames import pose_to_transform
 
 WARN_PERIOD_S = 5.0
@@ -20,21 +20,16 @@ WARN_PERIOD_S = 5.0
 class PoseToTfConfig:
     """pose_to_tf's parameters, validated."""
 
-    parent_frame: str
-    namespace: str
+    watch: WatchParams
     turtles: tuple
-    discovery_period_s: float
     rate_hz: float
 
 
 def load_config():
     """Reads and validates the private parameters. Raises ParamError naming the bad one."""
     return PoseToTfConfig(
-        parent_frame=check_name('~parent_frame', get_private('parent_frame', 'world')),
-        namespace=check_namespace('~namespace', get_private('namespace', '/')),
+        watch=load_watch_params(),
         turtles=check_name_list('~turtles', get_private('turtles', [])),
-        discovery_period_s=check_number(
-            '~discovery_period_s', get_private('discovery_period_s', 0.5), low=0.0, low_open=True),
         rate_hz=check_number('~rate_hz', get_private('rate_hz', 62.5), low=0.0))
 
 
@@ -79,8 +74,7 @@ class PoseToTf:
         self._timer = None
         if config.rate_hz > 0:
             self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz), self._flush)
-        self._watch = PoseWatch(config.namespace, config.turtles, config.discovery_period_s,
-                                self._on_pose, self._on_gone)
+        self._watch = PoseWatch(config.watch, config.turtles, self._on_pose, self._on_gone)
 
     def _on_pose(self, frame, msg, stamp):
         try:
@@ -88,7 +82,7 @@ class PoseToTf:
         except ValueError as err:
             rospy.logwarn_throttle(WARN_PERIOD_S, 'pose_to_tf: ignoring %s: %s', frame, err)
             return
-        tf_msg = transform_msg(self._config.parent_frame, frame, stamp, transform)
+        tf_msg = transform_msg(self._config.watch.parent_frame, frame, stamp, transform)
         if self._timer is None:
             self._broadcaster.sendTransform(tf_msg)
         else:
@@ -115,8 +109,8 @@ class PoseToTf:
 def main():
     init_node('pose_to_tf')
     config = load_or_exit(load_config, 'pose_to_tf')
-    rospy.loginfo('pose_to_tf: %s -> every turtle below %s%s, %s', config.parent_frame,
-                  config.namespace,
+    rospy.loginfo('pose_to_tf: %s -> every turtle below %s%s, %s', config.watch.parent_frame,
+                  config.watch.namespace,
                   ' (only %s)' % ', '.join(config.turtles) if config.turtles else '',
                   'batched at %g Hz' % config.rate_hz if config.rate_hz else 'one per pose')
     node = PoseToTf(config)

@@ -1,12 +1,15 @@
 """Follows every turtle's pose topic on the master: subscribes on spawn, drops on kill.
 
-ROS glue shared by pose_to_tf and lesson_markers; the choice of topics is
-course_common.pose_topics'.
+ROS glue shared by pose_to_tf and lesson_markers, with the parameters they share
+(WatchParams); the choice of topics is course_common.pose_topics'.
 """
 
 import threading
+from dataclasses import dataclass
 
 import rospy
+from course_common.param_loader import get_private
+from course_common.params import check_name, check_namespace, check_number
 from course_common.pose_topics import pose_topics
 from turtlesim.msg import Pose
 
@@ -15,8 +18,30 @@ from turtle_lite.team_frames import diff_topics
 QUEUE_SIZE = 1  # only the newest pose of each turtle matters to tf and to rviz
 
 
+@dataclass(frozen=True)
+class WatchParams:
+    """What a node that follows the team reads first, validated: the tf frame the turtles'
+    poses are in (~parent_frame), the namespace they are followed below (~namespace) and how
+    often the master is asked (~discovery_period_s, s)."""
+
+    parent_frame: str
+    namespace: str
+    discovery_period_s: float
+
+
+def load_watch_params():
+    """~parent_frame (str, "world"), ~namespace (str, "/": every simulator) and
+    ~discovery_period_s (float > 0, 0.5 s). Raises ParamError naming the bad one."""
+    return WatchParams(
+        parent_frame=check_name('~parent_frame', get_private('parent_frame', 'world')),
+        namespace=check_namespace('~namespace', get_private('namespace', '/')),
+        discovery_period_s=check_number(
+            '~discovery_period_s', get_private('discovery_period_s', 0.5), low=0.0, low_open=True))
+
+
 class PoseWatch:
-    """Polls the master every period_s for turtlesim/Pose topics below namespace.
+    """Polls the master every params.discovery_period_s for turtlesim/Pose topics below
+    params.namespace (only the turtles named in only, when it names any).
 
     Calls on_pose(frame, msg, stamp) for each pose (stamp: rospy.Time of arrival) and
     on_gone(frame) when a topic leaves the master (the turtle was killed, or its simulator
@@ -24,8 +49,8 @@ class PoseWatch:
     spawned them; polling it also finds turtles spawned before this node started.
     """
 
-    def __init__(self, namespace, only, period_s, on_pose, on_gone):
-        self._namespace = namespace
+    def __init__(self, params, only, on_pose, on_gone):
+        self._namespace = params.namespace
         self._only = tuple(only)
         self._on_pose = on_pose
         self._on_gone = on_gone
@@ -33,7 +58,8 @@ class PoseWatch:
         self._topics = {}
         self._subs = {}
         self.poll()
-        self._timer = rospy.Timer(rospy.Duration(period_s), lambda _event: self.poll())
+        self._timer = rospy.Timer(rospy.Duration(params.discovery_period_s),
+                                  lambda _event: self.poll())
 
     def frames(self):
         with self._lock:
