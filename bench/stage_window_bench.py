@@ -17,6 +17,7 @@ import statistics
 
 import stage_bench  # bench/ is on sys.path: ./ws bench runs the files from there
 from course_common.testing import Xvfb
+
 from stage_multi import lesson_world
 
 RUNS = 3

@@ -40,17 +40,16 @@ class StageWindow:
     """The window's state and its Tk widgets (made in the main thread by run_window).
 
     view: the node's WorldView; snapshot(): (steps, robots' views, status line) under the
-    node's lock; loop: the StepLoop (the Run menu's pause and speed); finished(): True when
-    the window must close (ROS shut down).
+    node's lock; loop: the StepLoop (the Run menu's pause and speed). The window closes when
+    ROS shuts down.
     """
 
-    def __init__(self, root, world, view, snapshot, loop, finished):
+    def __init__(self, root, world, view, snapshot, loop):
         import tkinter
         self.root = root
         self.view = view
         self.snapshot = snapshot
         self.loop = loop
-        self.finished = finished
         screen = (root.winfo_screenwidth(), root.winfo_screenheight())
         self.home = view.camera(screen)
         self.camera = self.home
@@ -182,7 +181,7 @@ class StageWindow:
         return picture.render(self.camera, base, robots, self.options, status)
 
     def refresh(self):
-        if self.finished():
+        if rospy.is_shutdown():
             self.root.quit()
             return
         image = self.frame()
@@ -212,7 +211,7 @@ def run_window(world, view, snapshot, loop):
                      'stageros: the window could not be opened (%s): running without one')
     if root is None:
         return False
-    window = StageWindow(root, world, view, snapshot, loop, rospy.is_shutdown)
+    window = StageWindow(root, world, view, snapshot, loop)
     root.after(0, window.refresh)
     try:
         root.mainloop()

@@ -1,6 +1,4 @@
 """stageros's services and latched extras: reset_positions, ~save_image and /map."""
-from dataclasses import replace
-
 import rospy
 from course_common.save_image import answer_save_image, write_png
 from geometry_msgs.msg import TransformStamped
@@ -11,7 +9,6 @@ from tf2_msgs.msg import TFMessage
 from stage_lite.srv import SaveImage, SaveImageResponse
 
 from . import map_msg
-from . import world_picture as picture
 
 
 class _PackedGrid(OccupancyGrid):
@@ -30,28 +27,23 @@ class _PackedGrid(OccupancyGrid):
 class StageServices:
     """reset_positions, ~save_image and the optional /map of a world.
 
-    world, lock: the world and the lock the step thread holds while it steps it; view: the
-    WorldView the pictures draw from; params: the node's StagerosParams; names: each robot's
-    RobotNames (for /map's transforms); snapshot(): (steps, the robots' views, the status
-    line), taken under the lock.
+    world: the world (its floor plan, for /map); params: the node's StagerosParams; names:
+    each robot's RobotNames (for /map's transforms); reset(): every robot back to its start
+    (the node's, under its lock); picture(): the world's picture as ~save_image draws it.
     """
 
-    def __init__(self, world, lock, view, params, names, snapshot):
-        self.world = world
-        self.lock = lock
-        self.view = view
+    def __init__(self, world, params, names, reset, picture):
         self.params = params
-        self.snapshot = snapshot
-        self._latched = self._publish_map(names) if params.publish_map else []
+        self._reset = reset
+        self._picture = picture
+        self._latched = self._publish_map(world, names) if params.publish_map else []
         self.reset_srv = rospy.Service('reset_positions', Empty, self.handle_reset)
         # an extra of stage_lite's: off until asked for, so the interface stays stageros's
         self.image_srv = (rospy.Service('~save_image', SaveImage, self.handle_save_image)
                           if params.save_image_service else None)
 
     def handle_reset(self, _req):
-        with self.lock:
-            self.world.reset()
-            self.view.clear()
+        self._reset()
         return EmptyResponse()
 
     def handle_save_image(self, req):
@@ -60,18 +52,13 @@ class StageServices:
             'could not save the image'))
 
     def save_image(self, path):
-        """Writes the world's picture to path (absolute); returns the path written: the
-        window's drawing of the world's own view (its window block), with the trails."""
-        camera = self.view.camera()
-        options = replace(self.view.options, trails=True)
-        base = self.view.floor(camera, options.grid)
-        _, robots, status = self.snapshot()
-        return write_png(path, picture.render(camera, base, robots, options, status))
+        """Writes the world's picture to path (absolute); returns the path written."""
+        return write_png(path, self._picture())
 
-    def _publish_map(self, names):
+    def _publish_map(self, world, names):
         """Latches /map and map -> odom transforms; returns the publishers (kept alive)."""
         frame = 'map' if self.params.tf2_frames else '/map'
-        cells, res, ox, oy = map_msg.map_grid(self.world.occupancy(),
+        cells, res, ox, oy = map_msg.map_grid(world.occupancy(),
                                               self.params.map_resolution_m)
         grid_pub = rospy.Publisher('/map', OccupancyGrid, queue_size=1, latch=True)
         grid_pub.publish(_PackedGrid(map_msg.grid_body(0, 0, frame, cells, res, ox, oy)))

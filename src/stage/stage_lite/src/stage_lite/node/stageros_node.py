@@ -41,6 +41,7 @@ import os
 import sys
 import threading
 import time
+from dataclasses import replace
 
 import rosgraph
 import rospy
@@ -58,6 +59,7 @@ from .stageros_args import ArgsError, parse_args
 from .stageros_params import load_params
 from .status import RateMeter, clock_string
 from .step_loop import StepLoop
+from .world_picture import render
 from .world_view import WorldView
 
 
@@ -82,8 +84,7 @@ class StageNode:
         self.rate = RateMeter()           # the real-time factor of the status line
         self.loop = StepLoop(self.step, world.interval_sim_s, node_speedup(world, params),
                              world.quit_time_s, self.output.wait_for_waiting_subscribers)
-        self.services = StageServices(world, self.lock, self.view, params, self.names,
-                                      self.snapshot)
+        self.services = StageServices(world, params, self.names, self.reset, self.picture)
 
     def on_cmd_vel(self, msg, index):
         vx, vy, wz = msg.linear.x, msg.linear.y, msg.angular.z
@@ -113,6 +114,20 @@ class StageNode:
         self.output.send(frames, stalls)
         set_own_time(*stamp)
         return now_s
+
+    def reset(self):
+        """reset_positions: every robot to its start pose, its trail cleared."""
+        with self.lock:
+            self.world.reset()
+            self.view.clear()
+
+    def picture(self):
+        """~save_image's picture: the window's drawing of the world's own view (its window
+        block), with the robots' trails."""
+        camera = self.view.camera()
+        options = replace(self.view.options, trails=True)
+        _, robots, status = self.snapshot()
+        return render(camera, self.view.floor(camera, options.grid), robots, options, status)
 
     def snapshot(self):
         """(steps so far, the robots' views, the status line) taken under the lock, for the
