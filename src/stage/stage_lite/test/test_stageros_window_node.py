@@ -7,9 +7,9 @@ camera puts them (their spacing gives the scale, their bearing the turn), each l
 its robot's colour laid over the floor, and a status line that changes as /clock advances.
 Then the Run keys (p pauses /clock, '.' steps once, '}' runs flat out, '{' real time again),
 the mouse (a drag pans the view by the drag, a wheel notch zooms 1.1 x about the pointer,
-space resets the view), the close button (the window goes, the simulation runs on), and
-File -> Exit's Ctrl+Q (stageros ends), each on a stageros of its own. The screenshot goes
-beside the test's results.
+space resets the view), a resize (the centre stays in the middle, the scale stays); the
+close button (the window goes, the simulation runs on) and File -> Exit's Ctrl+Q (stageros
+ends), each on a stageros of its own. The screenshot goes beside the test's results.
 """
 import math
 import os
@@ -232,6 +232,14 @@ class StagerosWindowTest(unittest.TestCase):
         self.bodies_where(zoomed_about_blue, 'the view zoomed 1.1 x about the blue robot')
         self.key('space')
         self.bodies_where(self.moved_by(home, (0, 0)), 'the view back home (View -> Reset)')
+
+    def test_resizing_keeps_the_centre_and_the_scale(self):
+        home = self.bodies_where(lambda b: True, 'the robots on screen')
+        self.xdo('windowsize', '--sync', self.window.id, SIZE_PX[0] + 160, SIZE_PX[1] + 100)
+        # the view's middle moves by half the growth; the robots keep their spacing
+        self.bodies_where(self.moved_by(home, (80, 50)), 'the view after the resize')
+        self.xdo('windowsize', '--sync', self.window.id, *SIZE_PX)
+        self.bodies_where(self.moved_by(home, (0, 0)), 'the view after the resize back')
 
     def own_stageros(self, name):
         """A second stageros (node `name`) with its window on a display of its own, stopped

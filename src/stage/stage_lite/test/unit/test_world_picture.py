@@ -1,5 +1,6 @@
 """Pictures as Stage's window draws them: grid, walls, fans, bodies, trails, status line."""
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -128,6 +129,18 @@ def test_footprint_is_the_size_rectangle_or_the_blocks():
                        color=(1, 0, 0), body=(triangle,))
     (polygon,) = picture.footprint(shaped)
     assert polygon[0].tolist() == pytest.approx([1.0, 2.2], abs=TOL)   # the tip, turned
+
+
+def test_the_nose_is_drawn_with_gui_nose_only():
+    camera = _camera(scale=300.0)
+    base = _plan().image(camera, grid_on=False)
+    robot = RobotView(pose=(0.0, 0.0, 0.0), size=(0.4, 0.4), origin=(0.0, 0.0),
+                      color=(1.0, 0.0, 0.0))
+    with_nose = picture.render(camera, base, [robot], DrawOptions(clock=False))
+    without = picture.render(camera, base, [replace(robot, nose=False)],
+                             DrawOptions(clock=False))
+    assert tuple(_at(with_nose, camera, 0.1, 0.0)) == picture.OUTLINE_RGB
+    assert tuple(_at(without, camera, 0.1, 0.0)) == (255, 0, 0)
 
 
 def test_a_robot_far_too_small_to_see_is_still_a_dot():

@@ -9,7 +9,7 @@ from stage_lite.testing.room import write_room_pgm
 WORLD = '''resolution 0.02
 interval_sim 100
 model( size [10 10 1] bitmap "room.pgm" pose [0 0 0 0] )
-position( pose [1 2 0 0] size [0.4 0.4 0.25] color "blue"
+position( pose [1 2 0 0] size [0.4 0.4 0.25] color "blue" gui_nose 1
   ranger( sensor( range [0 20] fov 180 samples 5 ) ) )
 '''
 TRIANGLE = '''
@@ -53,6 +53,7 @@ def test_views_are_copies_taken_now(tmp_path):
 def test_bodies_are_the_models_blocks_in_the_robot_frame(tmp_path):
     view = WorldView(lesson_like(tmp_path, TRIANGLE))
     square, triangle = (r.body for r in view.robots())
+    assert [r.nose for r in view.robots()] == [True, False]   # gui_nose 1, Stage's default 0
     assert len(square) == 1 and np.ptp(square[0], axis=0).tolist() == [0.4, 0.4]
     (points,) = triangle
     assert points.shape == (3, 2)

@@ -216,6 +216,7 @@ class Model:
         scope[kind] = n + 1
         self.token = ('%s.%s:%d' % (parent.token, kind, n)) if parent else '%s:%d' % (kind, n)
         self.name = ''
+        self.gui_nose = False
         self.child_counts = {}
         if parent is not None:
             parent.children.append(self)
@@ -279,6 +280,8 @@ class Model:
             if wf.exists(e, name):
                 wf.read_string(e, name, '')
         self.name = wf.read_string(e, 'name', '')
+        # GuiState::Load: a heading mark in the window (drawn by the node's window only)
+        self.gui_nose = wf.read_int(e, 'gui_nose', 0) != 0
         pose = read_pose(wf, e, 'origin', self.geom_pose)
         size = tuple(wf.read_tuple(e, 'size', 'lll') or self.geom_size)
         self.set_geom(pose, size)

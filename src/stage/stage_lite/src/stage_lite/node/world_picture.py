@@ -77,6 +77,7 @@ class RobotView:
     trail: np.ndarray | None = None  # K x 2 world points, oldest first
     #: The body's polygons in the robot frame (the model's blocks); () = the size rectangle.
     body: tuple = ()
+    nose: bool = True              # gui_nose: a line from the pose to the front edge
 
 
 def world_bounds(occupancy, points=()):
@@ -247,10 +248,10 @@ def render(camera, base, robots, options=DrawOptions(), status=None):
                 draw.polygon(corners, fill=_rgb255(robot.color), outline=OUTLINE_RGB)
             else:   # zoomed far out: a dot, never nothing
                 draw.point(corners[:2], fill=_rgb255(robot.color))
-        # The nose (Stage's gui_nose): from the pose to the front edge.
-        front = robot.origin[0] + robot.size[0] / 2
-        draw.line(_points(camera, _transform(robot.pose, [(0.0, 0.0), (front, 0.0)])),
-                  fill=OUTLINE_RGB, width=1)
+        if robot.nose:
+            front = robot.origin[0] + robot.size[0] / 2
+            draw.line(_points(camera, _transform(robot.pose, [(0.0, 0.0), (front, 0.0)])),
+                      fill=OUTLINE_RGB, width=1)
     if options.clock and status is not None:
         _draw_status(image, status)
     return image

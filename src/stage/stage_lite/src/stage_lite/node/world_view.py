@@ -58,7 +58,8 @@ class WorldView:
             views.append(picture.RobotView(
                 pose=tuple(robot.pose), size=tuple(robot.size[:2]),
                 origin=tuple(robot.origin[:2]), color=tuple(robot.color_rgb),
-                scans=scans, trail=self.trails.get(i), body=self._bodies[i]))
+                scans=scans, trail=self.trails.get(i), body=self._bodies[i],
+                nose=robot.model.gui_nose))
         return views
 
     def plan(self):
