@@ -12,6 +12,7 @@
 import math
 import threading
 
+from course_common.finite import is_finite_number
 from course_common.schedule import Deadlines
 
 #: Flat out: no pacing, the next step starts when the last one is published.
@@ -25,8 +26,7 @@ PAUSED_POLL_S = 0.02
 
 def check_speedup(value):
     """value as a float if it is -1 (flat out) or a finite number > 0; else ValueError."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) \
-            or not math.isfinite(value) or not (value > 0 or value == FLAT_OUT):
+    if not is_finite_number(value) or not (value > 0 or value == FLAT_OUT):
         raise ValueError('expected -1 (as fast as possible) or a finite number > 0')
     return float(value)
 

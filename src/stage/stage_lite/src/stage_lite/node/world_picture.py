@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from course_common.finite import is_finite_number
 from course_common.trail import Trail
 
 from .map_msg import coarsen
@@ -51,7 +52,7 @@ def draw_options(window):
     values = {}
     for flag, field in SHOW_FLAGS.items():
         value = (window or {}).get(flag)
-        if isinstance(value, (int, float)) and math.isfinite(value):
+        if is_finite_number(value):
             values[field] = int(value) != 0   # Stage reads the flags with ReadInt
     return DrawOptions(**values)
 
