@@ -1,4 +1,4 @@
-"""A Tk window showing one picture, refreshed on a timer (turtlesim's and stageros's windows).
+"""Tk windows for the simulators: a root or a WARN (both), one picture on a timer (turtlesim's).
 
 tkinter and PIL.ImageTk are imported only when a window is opened, so a headless node never
 loads them. The window runs in the calling (main) thread; the pictures come from a callback.
