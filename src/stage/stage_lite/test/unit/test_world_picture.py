@@ -143,6 +143,27 @@ def test_the_nose_is_drawn_with_gui_nose_only():
     assert tuple(_at(without, camera, 0.1, 0.0)) == (255, 0, 0)
 
 
+def test_fan_outlines_drop_the_corners_of_straight_runs_only():
+    # a fan's end points along a wall (a straight run of 41 corners) and around a corner
+    wall = np.column_stack((np.arange(0, 41), np.full(41, 10)))
+    side = np.column_stack((np.full(20, 40), np.arange(11, 31)))
+    polygon = np.vstack(([[0, 0]], wall, side))
+    kept = picture._simplified(polygon)
+    assert len(kept) < len(polygon) / 4
+    for corner in ([0, 0], [0, 10], [40, 10], [40, 30]):        # the shape's own corners
+        assert corner in kept.tolist()
+    # every dropped point lies within a pixel of the simplified outline
+    for point in polygon:
+        d = min(_distance_to_segment(point, a, b) for a, b in zip(kept[:-1], kept[1:]))
+        assert d < 1.0
+
+
+def _distance_to_segment(p, a, b):
+    p, a, b = (np.asarray(v, float) for v in (p, a, b))
+    t = np.clip(np.dot(p - a, b - a) / max(np.dot(b - a, b - a), 1e-12), 0.0, 1.0)
+    return float(np.linalg.norm(p - (a + t * (b - a))))
+
+
 def test_a_robot_far_too_small_to_see_is_still_a_dot():
     camera = _camera(scale=0.5)
     base = _plan().image(camera)
