@@ -154,7 +154,8 @@ def test_fan_outlines_drop_the_corners_of_straight_runs_only():
         assert corner in kept.tolist()
     # every dropped point lies within a pixel of the simplified outline
     for point in polygon:
-        d = min(_distance_to_segment(point, a, b) for a, b in zip(kept[:-1], kept[1:]))
+        d = min(_distance_to_segment(point, a, b)
+                for a, b in zip(kept[:-1], kept[1:], strict=True))
         assert d < 1.0
 
 
