@@ -30,10 +30,6 @@ from .camera import MIN_SIZE_PX
 #: Redraw period: 10 frames/s, one per simulated step at real time; more would cost CPU
 #: without showing anything new (a frame is drawn only when the world or the view changed).
 REFRESH_MS = 100
-#: Stage's Run and View keys.
-RUN_KEYS = {'p': 'toggle_pause', 'period': 'step_once', 'bracketright': 'faster',
-            'bracketleft': 'slower', 'braceleft': 'realtime', 'braceright': 'flat_out'}
-VIEW_KEYS = {'d': 'data', 'g': 'grid', 'c': 'clock'}
 
 
 class StageWindow:
@@ -54,9 +50,8 @@ class StageWindow:
         self.home = view.camera(screen)
         self.camera = self.home
         self.options = view.options
-        self._drawn = None         # (step, camera, options) of the picture on screen
+        self._drawn = None         # (step, camera, options, status) of the picture shown
         self._drag = None          # the pointer's last position while dragging
-        self._closed = False
         root.title('Stage: %s' % os.path.basename(world.path))
         root.geometry('%dx%d' % self.home.size_px)
         root.minsize(MIN_SIZE_PX, MIN_SIZE_PX)
@@ -70,45 +65,51 @@ class StageWindow:
         self._bind()
         root.protocol('WM_DELETE_WINDOW', self.close)
 
+    def _commands(self):
+        """Stage's menus: {menu: [(label, key as shown, Tk event, action) or None (a line)]}."""
+        def view(option):
+            return lambda: self.toggle(option)
+
+        def run(action):
+            return lambda: getattr(self.loop, action)()
+        return {
+            'File': [('Exit', 'Ctrl+Q', '<Control-q>', self.exit)],
+            'View': [('Reset', 'space', '<KeyPress-space>', self.reset_view), None,
+                     ('Data', 'd', '<KeyPress-d>', view('data')),
+                     ('Grid', 'g', '<KeyPress-g>', view('grid')),
+                     ('Clock', 'c', '<KeyPress-c>', view('clock')),
+                     ('Trails', 'Ctrl+F', '<Control-f>', view('trails'))],
+            'Run': [('Pause', 'p', '<KeyPress-p>', self.toggle_pause),
+                    ('One step', '.', '<KeyPress-period>', run('step_once')), None,
+                    ('Faster', ']', '<KeyPress-bracketright>', run('faster')),
+                    ('Slower', '[', '<KeyPress-bracketleft>', run('slower')), None,
+                    ('Realtime', '{', '<KeyPress-braceleft>', run('realtime')),
+                    ('Fast', '}', '<KeyPress-braceright>', run('flat_out'))],
+            'Help': [('About stageros...', '', None, self.about)],
+        }
+
     def _menus(self, tkinter):
-        """File, View, Run and Help as Stage has them (a bar inside the window, as FLTK's)."""
+        """File, View, Run and Help as Stage has them (a bar inside the window, as FLTK's),
+        each command on its key too."""
         bar = tkinter.Frame(self.root, borderwidth=1, relief='raised')
         bar.pack(side='top', fill='x')
-        entries = {
-            'File': [('Exit', 'Ctrl+Q', self.exit)],
-            'View': [('Reset', 'space', self.reset_view), None,
-                     ('Data', 'd', lambda: self.toggle('data')),
-                     ('Grid', 'g', lambda: self.toggle('grid')),
-                     ('Clock', 'c', lambda: self.toggle('clock')),
-                     ('Trails', 'Ctrl+F', lambda: self.toggle('trails'))],
-            'Run': [('Pause', 'p', self.loop_call('toggle_pause')),
-                    ('One step', '.', self.loop_call('step_once')), None,
-                    ('Faster', ']', self.loop_call('faster')),
-                    ('Slower', '[', self.loop_call('slower')), None,
-                    ('Realtime', '{', self.loop_call('realtime')),
-                    ('Fast', '}', self.loop_call('flat_out'))],
-            'Help': [('About stageros...', '', self.about)],
-        }
-        for title, items in entries.items():
+        for title, items in self._commands().items():
             button = tkinter.Menubutton(bar, text=title, underline=0)
             menu = tkinter.Menu(button, tearoff=False)
             for item in items:
                 if item is None:
                     menu.add_separator()
-                else:
-                    menu.add_command(label=item[0], accelerator=item[1], command=item[2])
+                    continue
+                label, key, event, action = item
+                menu.add_command(label=label, accelerator=key, command=action)
+                if event:
+                    self.root.bind(event, lambda _e, a=action: a())
             button['menu'] = menu
             button.pack(side='left')
 
     def _bind(self):
-        root, canvas = self.root, self.canvas
-        for key, action in RUN_KEYS.items():
-            root.bind('<KeyPress-%s>' % key, lambda _e, a=action: self.loop_call(a)())
-        for key, option in VIEW_KEYS.items():
-            root.bind('<KeyPress-%s>' % key, lambda _e, o=option: self.toggle(o))
-        root.bind('<Control-f>', lambda _e: self.toggle('trails'))
-        root.bind('<KeyPress-space>', lambda _e: self.reset_view())
-        root.bind('<Control-q>', lambda _e: self.exit())
+        """The mouse: drag to pan, the wheel to zoom; the canvas's size follows the window."""
+        canvas = self.canvas
         canvas.bind('<ButtonPress-1>', self._press)
         canvas.bind('<B1-Motion>', self._motion)
         canvas.bind('<ButtonRelease-1>', lambda _e: setattr(self, '_drag', None))
@@ -118,14 +119,8 @@ class StageWindow:
         canvas.bind('<Configure>', lambda e: self.resize(e.width, e.height))
 
     # what the user does
-    def loop_call(self, action):
-        def call():
-            if action == 'toggle_pause':
-                self.loop.pause(not self.loop.paused)
-            else:
-                getattr(self.loop, action)()
-            self._drawn = None   # the status line changes
-        return call
+    def toggle_pause(self):
+        self.loop.pause(not self.loop.paused)
 
     def toggle(self, option):
         self.options = replace(self.options, **{option: not getattr(self.options, option)})
@@ -159,14 +154,12 @@ class StageWindow:
         """The window's close button: the window goes, the simulation runs on."""
         rospy.loginfo('stageros: window closed; the simulation runs on without it '
                       '(Ctrl-C, or File -> Exit in the window, ends stageros)')
-        self._closed = True
         self.root.quit()
 
     def exit(self):
         """File -> Exit: stageros ends, as Stage does."""
         rospy.loginfo('stageros: user exited via File -> Exit')
         rospy.signal_shutdown('File -> Exit in the window')
-        self._closed = True
         self.root.quit()
 
     # drawing
