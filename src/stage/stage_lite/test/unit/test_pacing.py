@@ -89,6 +89,15 @@ def test_pacer_changes_speed_from_now():
         pacer.set_speedup(0.0, now_s=0.07)
 
 
+def test_pacer_restarts_from_now():
+    pacer = Pacer(0.1, 1.0, now_s=0.0)           # made at start-up, the loop starts later
+    pacer.restart(7.0)
+    assert pacer.delay(6.95) == pytest.approx(0.05, abs=TOL)
+    assert pacer.delay(7.0) == 0.0
+    pacer.done(7.0)
+    assert pacer.delay(7.0) == pytest.approx(0.1, abs=TOL)
+
+
 def test_paused_pacer_steps_only_when_asked_and_resumes_without_a_burst():
     pacer = Pacer(0.1, 1.0, now_s=0.0, paused=True)
     assert pacer.delay(50.0) == PAUSED_POLL_S

@@ -94,6 +94,11 @@ class Pacer(Deadlines):
     def _period(self):
         return 0.0 if self.speedup == FLAT_OUT else self.interval_s / self.speedup
 
+    def restart(self, now_s):
+        """The next step is due at now_s (the loop starts)."""
+        with self._lock:
+            self.next_s = now_s
+
     def set_speedup(self, speedup, now_s):
         with self._lock:
             self.speedup = check_speedup(speedup)

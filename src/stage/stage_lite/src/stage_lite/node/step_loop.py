@@ -1,5 +1,4 @@
 """stageros's stepping thread: one world step per interval_sim, paced to ~speedup x real time."""
-import threading
 import time
 
 import rospy
@@ -23,20 +22,24 @@ class StepLoop(DeadlineLoop):
     and services. An exception from a step is logged (throttled) and the loop goes on.
 
     The window's Run menu calls pause, step_once, faster, slower, realtime and flat_out from
-    its own thread; ``speedup`` and ``paused`` tell what the loop does now.
+    its own thread; ``speedup`` and ``paused`` tell what the loop does now (its Pacer's, which
+    keeps the two threads apart).
     """
 
-    def __init__(self, step, interval_s, speedup, quit_time_s=0.0, before_first=None,
-                 paused=False):
+    def __init__(self, step, interval_s, speedup, quit_time_s=0.0, before_first=None):
         self.step = step
-        self.interval_s = interval_s
-        self.speedup = speedup
-        self.paused = paused
+        self.pacer = Pacer(interval_s, speedup, time.monotonic())
         self._quit_s = quit_time_s if quit_time_s > 0 else None
         self._before_first = before_first
-        self._pacer = None
-        self._control = threading.Lock()   # the window's thread against the first schedule
         super().__init__(self._step, self._schedule, 'stageros_steps', 'stageros step')
+
+    @property
+    def speedup(self):
+        return self.pacer.speedup
+
+    @property
+    def paused(self):
+        return self.pacer.paused
 
     def describe(self):
         return describe_speedup(self.speedup)
@@ -45,29 +48,20 @@ class StepLoop(DeadlineLoop):
         # So that nodes started before stageros get its first step (t = 0.1 s) too.
         if self._before_first is not None:
             self._before_first(FIRST_STEP_WAIT_S)
-        with self._control:
-            self._pacer = Pacer(self.interval_s, self.speedup, time.monotonic(), self.paused)
-            return self._pacer
+        self.pacer.restart(time.monotonic())
+        return self.pacer
 
     def _set_speedup(self, speedup):
-        with self._control:
-            self.speedup = speedup
-            if self._pacer is not None:
-                self._pacer.set_speedup(speedup, time.monotonic())
+        self.pacer.set_speedup(speedup, time.monotonic())
         rospy.loginfo('stageros: %s', self.describe())
 
     def pause(self, paused):
         """Run -> Pause: stop stepping (the clock stands still) or go on."""
-        with self._control:
-            self.paused = paused
-            if self._pacer is not None:
-                self._pacer.set_paused(paused, time.monotonic())
+        self.pacer.set_paused(paused, time.monotonic())
 
     def step_once(self):
         """Run -> One step: one step while paused (nothing otherwise)."""
-        with self._control:
-            if self._pacer is not None:
-                self._pacer.step_once()
+        self.pacer.step_once()
 
     def faster(self):
         self._set_speedup(pacing.faster(self.speedup))
