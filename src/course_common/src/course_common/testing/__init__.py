@@ -5,9 +5,9 @@ check_refused (bad command lines, side by side), and the process helpers tests u
 (ChildProcess, spawn, Xvfb, free_port, cpu_ticks, rss_mb, from course_common.processes, .xvfb
 and .ports, where tools use them too). Beside it: recorders (topics and /rosout), master
 (queries of the graph, a private roscore), master_calls (a master that counts its calls),
-views (tf checks); each simulator's own helpers live with it (turtle_lite.testing,
-stage_lite.testing). Production code imports course_common.waiting, .processes, .ports and
-.xvfb, never this.
+views (tf checks), x_windows (the windows on an X display, and their close button); each
+simulator's own helpers live with it (turtle_lite.testing, stage_lite.testing). Production
+code imports course_common.waiting, .processes, .ports and .xvfb, never this.
 """
 import importlib.metadata
 import os

@@ -28,8 +28,9 @@ def clock_string(sim_ns, factor, paused):
 
 
 class RateMeter:
-    """The real-time factor from (wall s, sim s) samples: sim time over wall time across the
-    samples of the last window_s (0.0 until two samples are that far apart or more)."""
+    """The real-time factor from (wall s, sim s) samples: sim time over wall time from the
+    newest sample at least window_s old (or the oldest kept) to the newest; 0.0 with fewer
+    than two samples."""
 
     def __init__(self, window_s=RATE_WINDOW_S):
         self.window_s = window_s
