@@ -81,13 +81,11 @@ class RobotView:
     nose: bool = True              # gui_nose: a line from the pose to the front edge
 
 
-def world_bounds(occupancy, points=()):
-    """(x0, y0, x1, y1) holding the occupancy grid and the given world points."""
+def world_bounds(occupancy):
+    """(x0, y0, x1, y1): the occupancy grid's extent."""
     grid, ox, oy, res = occupancy
     rows, cols = grid.shape
-    xs = [ox, ox + cols * res] + [p[0] for p in points]
-    ys = [oy, oy + rows * res] + [p[1] for p in points]
-    return min(xs), min(ys), max(xs), max(ys)
+    return ox, oy, ox + cols * res, oy + rows * res
 
 
 class FloorPlan:
@@ -164,7 +162,8 @@ def _rgb255(color):
     return tuple(round(255 * max(0.0, min(1.0, c))) for c in color)
 
 
-def _transform(pose, local):
+def transformed(pose, local):
+    """N x 2 points given in the frame pose (x, y, yaw) as N x 2 points in the outer frame."""
     x, y, yaw = pose
     c, s = math.cos(yaw), math.sin(yaw)
     local = np.asarray(local, dtype=float).reshape(-1, 2)
@@ -175,17 +174,17 @@ def _transform(pose, local):
 def footprint(robot):
     """The robot's body as world polygons (N x 2 each): its blocks, else its size rectangle."""
     if robot.body:
-        return [_transform(robot.pose, poly) for poly in robot.body]
+        return [transformed(robot.pose, poly) for poly in robot.body]
     (sx, sy), (ox, oy) = robot.size, robot.origin
     corners = [(ox - sx / 2, oy - sy / 2), (ox + sx / 2, oy - sy / 2),
                (ox + sx / 2, oy + sy / 2), (ox - sx / 2, oy + sy / 2)]
-    return [_transform(robot.pose, corners)]
+    return [transformed(robot.pose, corners)]
 
 
 def fan_polygon(robot, scan):
     """The area a ranger sees: its origin and every beam's end, (samples + 1) x 2 world points."""
     sx, sy, syaw = scan.pose
-    (ox, oy), = _transform(robot.pose, [(sx, sy)])
+    (ox, oy), = transformed(robot.pose, [(sx, sy)])
     heading = robot.pose[2] + syaw + np.asarray(scan.angles, dtype=float)
     r = np.asarray(scan.ranges, dtype=float)
     ends = np.column_stack((ox + r * np.cos(heading), oy + r * np.sin(heading)))
@@ -278,7 +277,7 @@ def render(camera, base, robots, options=DrawOptions(), status=None):
                 draw.point(corners[:2], fill=_rgb255(robot.color))
         if robot.nose:
             front = robot.origin[0] + robot.size[0] / 2
-            draw.line(_points(camera, _transform(robot.pose, [(0.0, 0.0), (front, 0.0)])),
+            draw.line(_points(camera, transformed(robot.pose, [(0.0, 0.0), (front, 0.0)])),
                       fill=OUTLINE_RGB, width=1)
     if options.clock and status is not None:
         _draw_status(image, status)

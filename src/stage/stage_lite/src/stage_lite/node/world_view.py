@@ -6,10 +6,6 @@ and the floor drawn for a camera. The window (gui) and ~save_image (stage_servic
 draw from one: record() after every step and robots() under the node's lock, pictures
 outside it.
 """
-import math
-
-import numpy as np
-
 from . import world_picture as picture
 from .camera import robots_box, window_camera, window_size
 
@@ -20,10 +16,8 @@ FLOOR_CACHE = 4
 def _body_polygons(model):
     """The model's blocks as polygons in the robot frame (its geom pose applied)."""
     gx, gy, _, ga = model.geom_pose
-    c, s = math.cos(ga), math.sin(ga)
-    return tuple(np.column_stack((gx + c * b.pts[:, 0] - s * b.pts[:, 1],
-                                  gy + s * b.pts[:, 0] + c * b.pts[:, 1]))
-                 for b in model.blocks if len(b.pts) >= 3)
+    return tuple(picture.transformed((gx, gy, ga), b.pts) for b in model.blocks
+                 if len(b.pts) >= 3)
 
 
 class WorldView:
