@@ -38,9 +38,9 @@ class SimGuiTest(unittest.TestCase):
     def test_window_title_size_background_and_turtle(self):
         xwin = XWindows(self.display)
         self.addCleanup(xwin.close)
-        window = wait_for(lambda: [w for w in xwin.windows() if w[0] == 'TurtleSim' and w[3]],
+        window = wait_for(lambda: xwin.mapped('TurtleSim'),
                           START_DEADLINE_S, 'a mapped window titled TurtleSim')[0]
-        self.assertEqual(window[1:3], (500, 500), self.output())
+        self.assertEqual((window.width, window.height), (500, 500), self.output())
         self.assertNotIn('running headless', self.output())
 
         rospy.ServiceProxy('/gui/turtle1/teleport_absolute', TeleportAbsolute)(2.0, 2.0, 0.0)

@@ -9,8 +9,7 @@ import ctypes
 import ctypes.util
 from collections import namedtuple
 
-#: One named window: (name, width, height, mapped) first, as the tests read it, then its id
-#: and its place on the screen.
+#: One named window: its name, size, whether it is mapped, its id and its place on the screen.
 XWindow = namedtuple('XWindow', 'name width height mapped id x y')
 
 _CLIENT_MESSAGE = 33
