@@ -33,11 +33,16 @@ usage: ./ws COMMAND [ARGS]
   integration [F..]  rostest every test/*.test of every package (or just the files F),
                      WS_TEST_JOBS at a time
   multihost [ARGS]   the multi-host tests (test/hosts/, pytest; root and ip netns, else skipped)
+  browser [ARGS]     the browser tests (test/browser/, pytest): the desktop in headless Chromium,
+                     against ./ws desktop, or an image with DESKTOP_TEST_IMAGE=NAME
   bench [NAME..] [OPTIONS]
                      run the benchmarks under bench/ (all, or bench/NAME.py); options
                      (from the first one starting with -) go to each of them, e.g.
                      ./ws bench stage_bench --peer STAGEROS --map willow-full.pgm
   shell              a bash with the workspace sourced, for running things by hand
+  desktop [OPTIONS]  the course's desktop in a web browser, on http://127.0.0.1:6080/ until
+                     Ctrl-C (--listen ADDR, --port N, --token T, --workspace DIR, --help;
+                     src/course_desktop/README.md)
   hosts CMD [ARGS]   hosts on this machine as network namespaces (root): up N | down | status |
                      exec I CMD.. | link I up/down | netem ARGS/off (src/multihost/README.md)
 EOF
@@ -176,6 +181,7 @@ run_rostest_file() {
 run_test_job() {
   case $1 in
     multihost) cmd_multihost >"$RESULTS_DIR/multihost.log" 2>&1 ;;
+    browser) cmd_browser >"$RESULTS_DIR/browser.log" 2>&1 ;;
     *) run_rostest_file "$1" ;;
   esac
 }
@@ -183,6 +189,7 @@ run_test_job() {
 test_job_log() {
   case $1 in
     multihost) echo "$RESULTS_DIR/multihost.log" ;;
+    browser) echo "$RESULTS_DIR/browser.log" ;;
     *) echo "$(integration_results_dir "$1")/rostest.log" ;;
   esac
 }
@@ -190,6 +197,7 @@ test_job_log() {
 test_job_label() {
   case $1 in
     multihost) echo "multihost:" ;;
+    browser) echo "browser:" ;;
     *) echo "integration: $(package_of "$1")/$(basename "$1" .test)" ;;
   esac
 }
@@ -246,6 +254,20 @@ cmd_multihost() {
   ((status == 0 || status == 5))
 }
 
+# The desktop in a real browser (test/browser/, pytest): each test starts its own desktop on a
+# free port and a headless Chromium.
+cmd_browser() {
+  source_devel
+  local_ros_network
+  export COURSE_WS_SETUP="$ROOT/$DEVEL_DIR/setup.bash"
+  mkdir -p "$RESULTS_DIR"
+  local status=0 dirs
+  mapfile -t dirs < <(test_dirs browser)
+  timeout --kill-after=10 1200 /usr/bin/python3 -m pytest -q -p no:cacheprovider \
+    --junitxml="$RESULTS_DIR/browser.xml" -rs "${dirs[@]}" "$@" || status=$?
+  ((status == 0 || status == 5))
+}
+
 # src/.../<pkg>/test/<name>.test -> <pkg>
 package_of() { basename "$(dirname "$(dirname "$1")")"; }
 
@@ -263,11 +285,12 @@ cmd_test() {
   local lint_ok=1
   cmd_lint || lint_ok=0
   cmd_unit || true
-  # The multi-host tests first: the longest job, run beside the .test files.
+  # The multi-host and browser tests first: the longest jobs, run beside the .test files.
   local files
   mapfile -t files < <(integration_files)
-  run_test_jobs multihost "${files[@]}" || true
-  local expected=(--junit "$RESULTS_DIR/unit.xml" --junit "$RESULTS_DIR/multihost.xml") f
+  run_test_jobs multihost browser "${files[@]}" || true
+  local expected=(--junit "$RESULTS_DIR/unit.xml" --junit "$RESULTS_DIR/multihost.xml"
+    --junit "$RESULTS_DIR/browser.xml") f
   for f in "${files[@]}"; do
     expected+=(--rostest "$(integration_results_dir "$f")")
   done
@@ -305,6 +328,15 @@ cmd_hosts() {
   exec rosrun multihost hosts "$@"
 }
 
+# The desktop runs what the student starts in its terminals, as this user: no deps or build
+# step (a student's container has no root), the built workspace is all it needs.
+cmd_desktop() {
+  source_devel
+  local_ros_network
+  export COURSE_WS_SETUP="$ROOT/$DEVEL_DIR/setup.bash"
+  exec rosrun course_desktop desktop "$@"
+}
+
 cmd_shell() {
   source_devel
   exec bash --rcfile <(echo "source ~/.bashrc 2>/dev/null; export PATH=\"$PATH\"; source \"$ROOT/$DEVEL_DIR/setup.bash\"; PS1=\"(ws) \$PS1\"")
@@ -314,7 +346,7 @@ command=${1:-}
 [[ -n $command ]] || { usage; exit 2; }
 shift
 case $command in
-  demo|test|deps|build|lint|unit|integration|multihost|summary|bench|shell|hosts) "cmd_$command" "$@" ;;
+  demo|test|deps|build|lint|unit|integration|multihost|browser|summary|bench|shell|hosts|desktop) "cmd_$command" "$@" ;;
   -h|--help|help) usage ;;
   *) echo "ws: unknown command '$command'" >&2; usage >&2; exit 2 ;;
 esac

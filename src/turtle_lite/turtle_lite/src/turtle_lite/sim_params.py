@@ -3,6 +3,7 @@
 turtlesim ignores a parameter of the wrong type and uses its default; so does this node, with
 a WARN naming the parameter, the value and the expected type (see course_common.params).
 """
+import os
 from dataclasses import dataclass
 
 import rospy
@@ -38,7 +39,9 @@ def _check_path(name, value):
 
 def load_params():
     """The private ~gui, ~image_path and ~save_image_on_shutdown (defaults for bad ones)."""
-    return SimParams(gui=_or_default('~gui', False, check_flag),
+    # turtlesim always opens its window: so does this one where there is a screen (a desktop,
+    # ./ws desktop); without one it runs headless, quietly, unless ~gui asks for the window.
+    return SimParams(gui=_or_default('~gui', bool(os.environ.get('DISPLAY')), check_flag),
                      image_path=_or_default('~image_path', DEFAULT_IMAGE_PATH, _check_path),
                      save_image_on_shutdown=_or_default('~save_image_on_shutdown', False,
                                                         check_flag))

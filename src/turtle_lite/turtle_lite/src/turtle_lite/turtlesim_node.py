@@ -15,7 +15,8 @@ Per turtle, in the turtle's namespace (``turtle1/...``; namespace remaps such as
 Parameters:
   ~background_r, ~background_g, ~background_b (int, default 69, 86, 255): written at start if
       absent, read only when the canvas is cleared (start, clear, reset); masked to 8 bits.
-  ~gui (bool, default false): open a Tk window "TurtleSim" (falls back to headless with a WARN).
+  ~gui (bool, default: true when DISPLAY is set): open a Tk window "TurtleSim" (falls back to
+    headless with a WARN).
   ~image_path (str, default ~/.ros/turtle_lite.png): where ~save_image writes for an empty path.
   ~save_image_on_shutdown (bool, default false): write ~image_path when the node shuts down.
 """

@@ -1,0 +1,6 @@
+"""Installs the course_desktop Python package (catkin_python_setup); do not run by hand."""
+from catkin_pkg.python_setup import generate_distutils_setup
+from setuptools import setup
+
+setup(**generate_distutils_setup(packages=['course_desktop'], package_dir={'': 'src'},
+                                 package_data={'course_desktop': ['terminal.bashrc']}))

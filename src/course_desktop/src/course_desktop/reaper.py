@@ -1,0 +1,86 @@
+"""Everything the desktop started, found and stopped: its whole process tree.
+
+What a student starts in the desktop's terminals does not stay in one process group:
+roslaunch puts each node in a session of its own, and `roscore &` in a terminal that was
+then closed leaves an orphan. So the desktop makes itself a child subreaper (Linux's
+PR_SET_CHILD_SUBREAPER): orphans of its tree are re-parented to it, not to init, and its tree
+by parent pids (course_common.processes.descendants) holds everything it ever started that
+still runs. Stopping sends SIGTERM to all of it (a background job of a non-interactive bash
+ignores SIGINT; rospy, roslaunch, Xvnc and xterm all end cleanly on SIGTERM), then SIGKILL to
+what is left after a grace period.
+"""
+import contextlib
+import ctypes
+import os
+import signal
+import time
+
+from course_common.processes import descendants, process_table
+
+PR_SET_CHILD_SUBREAPER = 36  # <linux/prctl.h>
+STOP_GRACE_S = 10.0  # roslaunch gives its nodes this long for SIGINT before escalating
+POLL_S = 0.05
+
+
+def become_subreaper():
+    """Orphans of this process's tree come to it (Linux 3.4+); False where prctl fails."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    return libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
+
+
+def tree(root=None):
+    """The pids under root (this process by default), root itself left out."""
+    root = os.getpid() if root is None else root
+    return [pid for pid in descendants(root, process_table()) if pid != root]
+
+
+def reap_orphans(known=()):
+    """Collects the exit status of children this process did not start itself (orphans
+    re-parented to it), so none stays a zombie; `known` are children whose Popen waits for
+    them. Returns how many it reaped."""
+    me, reaped = os.getpid(), 0
+    for pid, (ppid, _) in process_table().items():
+        if ppid == me and pid not in known:
+            with contextlib.suppress(ChildProcessError):
+                done, _ = os.waitpid(pid, os.WNOHANG)
+                reaped += bool(done)
+    return reaped
+
+
+def stop_tree(known=(), grace_s=STOP_GRACE_S, root=None):
+    """SIGTERM to every process under root, SIGKILL to the survivors after grace_s; waits
+    until none is left (orphans reaped as they end). Returns the pids that had to be killed."""
+    _signal_all(tree(root), signal.SIGTERM)
+    deadline = time.monotonic() + grace_s
+    while time.monotonic() < deadline:
+        reap_orphans(known)
+        if not _running(tree(root)):
+            return []
+        time.sleep(POLL_S)
+    stubborn = _running(tree(root))
+    _signal_all(stubborn, signal.SIGKILL)
+    deadline = time.monotonic() + grace_s
+    while _running(tree(root)) and time.monotonic() < deadline:
+        reap_orphans(known)
+        time.sleep(POLL_S)
+    return stubborn
+
+
+def _signal_all(pids, sig):
+    for pid in pids:
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.kill(pid, sig)
+
+
+def _running(pids):
+    """The pids that are not zombies (a zombie has ended; only its parent's wait is missing)."""
+    alive = []
+    for pid in pids:
+        try:
+            with open('/proc/%d/stat' % pid, encoding='utf-8', errors='replace') as f:
+                state = f.read().rsplit(')', 1)[1].split()[0]
+        except (OSError, IndexError):
+            continue
+        if state != 'Z':
+            alive.append(pid)
+    return alive
