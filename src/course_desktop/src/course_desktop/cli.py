@@ -17,11 +17,12 @@ import tempfile
 import threading
 import urllib.parse
 
-from course_desktop import reaper
 from course_desktop.access import AccessPolicy, start_path, url_host
 from course_desktop.gateway import NOVNC_DIR, Gateway
 from course_desktop.options import parse_options
 from course_desktop.x_session import SessionError, XSession
+
+from course_desktop import reaper
 
 #: The programs the desktop runs, and the Debian package of each (tools/debian-packages.txt).
 PROGRAMS = {'Xvnc': 'tigervnc-standalone-server', 'openbox': 'openbox', 'xterm': 'xterm',
@@ -165,25 +166,28 @@ def prepare_workspace(workspace):
 
 
 def bind_gateway(options, policy, vnc_socket):
-    where = '%s:%d' % (url_host(options.listen), options.port)
     try:
         return Gateway(options.listen, options.port, policy, vnc_socket,
                        verbose=options.verbose)
     except OSError as err:
-        if err.errno == errno.EADDRINUSE:
-            raise DesktopError('port %d is taken on %s (another desktop, or another program): '
-                               'stop it, or choose another port with --port' % (options.port,
-                                                                               options.listen))
-        if err.errno == errno.EADDRNOTAVAIL:
-            raise DesktopError('%s is not an address of this machine: --listen takes one of '
-                               'its own addresses, or 0.0.0.0 for all' % options.listen)
-        if err.errno == errno.EACCES:
-            raise DesktopError('no permission to serve on %s (ports below 1024 need root): '
-                               'choose a port above 1023' % where)
-        if isinstance(err, socket.gaierror):
-            raise DesktopError('--listen %r is not an address this machine can serve on: %s'
-                               % (options.listen, err.strerror))
-        raise DesktopError('cannot serve on %s: %s' % (where, err.strerror or err))
+        raise DesktopError(bind_error_message(err, options.listen, options.port)) from None
+
+
+def bind_error_message(err, listen, port):
+    """What a failed bind of the desktop's address means for the user, and what to do."""
+    if isinstance(err, socket.gaierror):
+        return '--listen %r is not an address this machine can serve on: %s' % (listen,
+                                                                                 err.strerror)
+    if err.errno == errno.EADDRINUSE:
+        return ('port %d is taken on %s (another desktop, or another program): stop it, or '
+                'choose another port with --port' % (port, listen))
+    if err.errno == errno.EADDRNOTAVAIL:
+        return ('%s is not an address of this machine: --listen takes one of its own '
+                'addresses, or 0.0.0.0 for all' % listen)
+    if err.errno == errno.EACCES:
+        return ('no permission to serve on port %d (ports below 1024 need root): choose a port '
+                'above 1023' % port)
+    return 'cannot serve on %s:%d: %s' % (url_host(listen), port, err.strerror or err)
 
 
 def self_check(url):

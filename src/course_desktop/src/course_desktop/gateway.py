@@ -13,10 +13,9 @@ import socket
 import sys
 import threading
 
+from course_desktop.access import WEBSOCKET_PATH, novnc_location
 from websockify.websocket import WebSocket, WebSocketWantReadError, WebSocketWantWriteError
 from websockify.websocketserver import WebSocketRequestHandlerMixIn
-
-from course_desktop.access import WEBSOCKET_PATH, novnc_location
 
 NOVNC_DIR = '/usr/share/novnc'  # Debian's novnc package
 RELAY_CHUNK = 65536  # bytes read from the VNC server at a time: a screen update's worth
@@ -200,9 +199,10 @@ class Gateway(http.server.ThreadingHTTPServer):
         with self._clients_lock:
             return self._clients
 
-    def serve_in_thread(self):
-        self._thread = threading.Thread(target=self.serve_forever, name='desktop gateway',
-                                        daemon=True)
+    def serve_in_thread(self, poll_s=0.5):
+        """Serves in a thread of its own; shutdown_now() takes up to poll_s to stop it."""
+        self._thread = threading.Thread(target=self.serve_forever, args=(poll_s,),
+                                        name='desktop gateway', daemon=True)
         self._thread.start()
 
     def shutdown_now(self):

@@ -28,7 +28,8 @@ def openbox_config(terminal_command, menu_path, base=None):
                '</command></action>\n  </keybind>' % (quoteattr(NEW_TERMINAL_KEY),
                                                     escape(terminal_command)))
     text = _sub_once(r'^<keyboard>', lambda _: keybind, text, 'keyboard')
-    # The top-level <menu> section's <file> entries name Debian's menus: keep the settings, list ours.
+    # The top-level <menu> section's <file> entries name Debian's menus: keep its settings,
+    # list only ours.
     return _sub_once(r'^(<menu>)(.*?)(^</menu>)',
                      lambda m: '%s\n  <file>%s</file>%s%s' % (
                          m.group(1), escape(menu_path),

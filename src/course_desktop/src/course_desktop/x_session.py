@@ -14,7 +14,6 @@ import subprocess
 from course_common.processes import ChildProcess
 from course_common.waiting import WaitError, wait_for
 from course_common.xvfb import display_number
-
 from course_desktop.openbox import openbox_config, openbox_menu
 
 START_TIMEOUT_S = 30.0  # Xvnc and openbox start in well under a second; a loaded machine is slower

@@ -8,7 +8,8 @@ import os
 import socket
 
 import pytest
-
+from course_common.ports import free_port
+from course_common.processes import descendants, process_table
 from course_desktop.testing import (
     EVENT_DEADLINE_S,
     Browser,
@@ -18,8 +19,6 @@ from course_desktop.testing import (
     wait_for,
     wait_for_file,
 )
-from course_common.ports import free_port
-from course_common.processes import descendants, process_table
 
 IN_CONTAINER = bool(os.environ.get('DESKTOP_TEST_IMAGE'))
 local_only = pytest.mark.skipif(IN_CONTAINER, reason='checks ./ws desktop on this machine')
@@ -107,7 +106,7 @@ def test_the_stage_lesson_shows_in_the_page_and_its_robots_move_after_go(workspa
 
         def moved():
             return any(now is not None and abs(now[0] - then[0]) + abs(now[1] - then[1]) > 5
-                       for now, then in zip(robot_spots(browser), start))
+                       for now, then in zip(robot_spots(browser), start, strict=True))
         wait_for(moved, EVENT_DEADLINE_S, 'a robot to move in the page after GO')
 
 
@@ -156,7 +155,8 @@ def test_ctrl_c_stops_everything_it_started_even_what_left_its_process_group(
     d = LocalDesktop(workspace, env=private_master()).start()
     try:
         browser.open(d.url()).wait_connected()
-        browser.type('roscore -p "${ROS_MASTER_URI##*:}" > /dev/null & (setsid sleep 600 &); sleep 601 &\n')
+        browser.type('roscore -p "${ROS_MASTER_URI##*:}" > /dev/null & '
+                     '(setsid sleep 600 &); sleep 601 &\n')
 
         def started():
             table = process_table()

@@ -1,0 +1,111 @@
+"""The image's `desktop` command: start as root, become the owner of the student's folder,
+then run `./ws desktop` as that user (no service of the desktop runs as root).
+
+`docker run -v "$PWD/catkin_ws:/home/student/catkin_ws" course-ws desktop`: the folder is the
+student's on the host, so the desktop takes its owner's uid and gid and every file made in it
+stays the student's. Where the folder shows as root's (Docker Desktop on Windows, rootless
+Podman without --userns=keep-id), the image's own student (uid 1000) is used, if it can write
+there; else one clear message and exit 1. Started as a non-root user already (`--user`,
+Podman's keep-id), it runs as that user.
+"""
+import os
+import pwd
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+
+HOME = '/home/student'
+WORKSPACE = HOME + '/catkin_ws'
+USER = 'student'
+IMAGE_UID = IMAGE_GID = 1000  # the image's student (Dockerfile)
+
+
+@dataclass(frozen=True)
+class DesktopUser:
+    uid: int
+    gid: int
+    #: why this user, said once at start (empty when it goes without saying)
+    note: str = ''
+
+
+def choose_user(running, folder, mounted):
+    """Who runs the desktop (pure): from who started the container and who owns the folder,
+    each a (uid, gid) pair, and whether the folder is mounted from outside."""
+    if running[0] != 0:
+        return DesktopUser(*running)
+    folder_uid, folder_gid = folder
+    note = '' if mounted else (
+        'no folder of yours is mounted at %s: what you make there is lost when the container '
+        'is removed (add -v "$PWD/catkin_ws:%s" to the docker run command)' % (WORKSPACE,
+                                                                                WORKSPACE))
+    if folder_uid == 0:
+        return DesktopUser(IMAGE_UID, IMAGE_GID, note or (
+            '%s belongs to root inside the container: running as uid %d (rootless Podman: add '
+            '--userns=keep-id, so files are yours on the host)' % (WORKSPACE, IMAGE_UID)))
+    return DesktopUser(folder_uid, folder_gid, note)
+
+
+def is_mount_point(path, mountinfo='/proc/self/mountinfo'):
+    """True when path is a mount point (a host folder or a volume given with -v)."""
+    try:
+        with open(mountinfo, encoding='utf-8') as f:
+            return any(line.split()[4] == path for line in f if len(line.split()) > 4)
+    except OSError:
+        return False
+
+
+def main(argv=None):
+    args = sys.argv[1:] if argv is None else argv
+    try:
+        info = os.stat(WORKSPACE)
+    except OSError as err:
+        sys.exit('desktop: %s cannot be read: %s' % (WORKSPACE, err.strerror))
+    user = choose_user((os.getuid(), os.getgid()), (info.st_uid, info.st_gid),
+                       is_mount_point(WORKSPACE))
+    if user.note:
+        print('desktop: %s' % user.note, flush=True)
+    if os.getuid() == 0:
+        become(user)
+    if not os.access(WORKSPACE, os.W_OK | os.X_OK):
+        sys.exit('desktop: uid %d cannot write to %s (the folder you mounted): make it yours '
+                 '(chmod u+rwx), or start the container with --user "$(id -u):$(id -g)"'
+                 % (os.getuid(), WORKSPACE))
+    home = HOME if os.access(HOME, os.W_OK) else _scratch_home()
+    env = dict(os.environ, HOME=home, USER=_name(), LOGNAME=_name())
+    os.chdir('/workspace')
+    os.execvpe('./ws', ['./ws', 'desktop', '--listen', '0.0.0.0', '--workspace', WORKSPACE]
+               + args, env)
+
+
+def become(user):
+    """Gives the image's student this uid and gid (so names and ~ stay right), gives it its
+    home, then drops root for good."""
+    if (user.uid, user.gid) != (IMAGE_UID, IMAGE_GID):
+        # -o: the host's ids may already name someone in the image (macOS's staff is gid 20).
+        _run(['groupmod', '-o', '-g', str(user.gid), USER])
+        _run(['usermod', '-o', '-u', str(user.uid), '-g', str(user.gid), USER])
+    # The home, not the mounted folder in it (that one is the student's already).
+    _run(['find', HOME, '-xdev', '-path', WORKSPACE, '-prune', '-o', '-exec', 'chown',
+          '%d:%d' % (user.uid, user.gid), '{}', '+'])
+    os.setgroups([])
+    os.setgid(user.gid)
+    os.setuid(user.uid)
+
+
+def _run(argv):
+    done = subprocess.run(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                          check=False)
+    if done.returncode != 0:
+        sys.exit('desktop: %s failed: %s' % (' '.join(argv), done.stderr.strip()))
+
+
+def _scratch_home():
+    return tempfile.mkdtemp(prefix='student-home-')
+
+
+def _name():
+    try:
+        return pwd.getpwuid(os.getuid()).pw_name
+    except KeyError:
+        return USER
