@@ -2,10 +2,11 @@
 
 Not test code: convoy's harness and demo, rviz_snapshot and multihost's lessons wait with it
 too, so it lives outside course_common.testing (which re-exports it for the tests).
+A program that never imported rospy (the browser desktop) waits with it too, without paying
+for rospy's import: ROS shutting down can only end a wait in a process that uses ROS.
 """
+import sys
 import time
-
-import rospy
 
 POLL_S = 0.01  # s between checks: fine-grained next to the 16 ms tick, cheap on the CPU
 
@@ -33,6 +34,7 @@ def wait_for(predicate, timeout_s, what, poll_s=POLL_S, alive=None):
             raise WaitError('gave up waiting for %s: the process it needs has exited' % what)
         if time.monotonic() > deadline:
             raise WaitError('timed out after %.1f s waiting for %s' % (timeout_s, what))
-        if rospy.is_shutdown():
+        rospy = sys.modules.get('rospy')
+        if rospy is not None and rospy.is_shutdown():
             raise WaitError('ROS shut down while waiting for %s' % what)
         time.sleep(poll_s)

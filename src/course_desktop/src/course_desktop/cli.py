@@ -109,6 +109,8 @@ class Desktop:
         lines += ['desktop:   or %s' % url for url in urls[1:]]
         lines += ['desktop: your workspace: %s (overlaid on the course workspace)'
                   % self.options.workspace,
+                  'desktop: X programs from elsewhere: DISPLAY=%s XAUTHORITY=%s'
+                  % (self.session.display, self.session.xauthority),
                   'desktop: serving on %s:%d%s; Ctrl-C stops it and everything it started'
                   % (url_host(self.options.listen), self.options.port,
                      '' if self.options.token is None else ', token required')]

@@ -1,10 +1,11 @@
 """stageros's window, as Stage 4.3's: the world's view, a status line, pan, zoom, the Run menu.
 
 Imported only without -g, so a headless node never loads tkinter or ImageTk. The window runs
-in the main thread; the simulation stays in the step thread and never waits for a frame: every
-REFRESH_MS the window takes a snapshot under the node's lock (a copy of the robots' views and
-the status line) and draws it outside the lock, so a slow frame is a frame dropped, never a
-step. With no display (or no Tk) the node WARNs and runs headless, where Stage would fail.
+in the main thread; the simulation stays in the step thread and never waits for a frame: when
+a step has been taken (looked at every POLL_MS, one number read without the lock), or every
+CHECK_MS for what changes without a step, the window takes a snapshot under the node's lock (a
+copy of the robots' views and the status line) and draws it outside the lock, so a slow frame
+is a frame dropped, never a step. With no display (or no Tk) the node WARNs and runs headless, where Stage would fail.
 
 What the user does, as in Stage's window (libstage/worldgui.cc, canvas.cc):
 - the world file's ``window( size center rotate scale show_data show_grid show_clock
@@ -19,6 +20,7 @@ What the user does, as in Stage's window (libstage/worldgui.cc, canvas.cc):
 """
 import contextlib
 import os
+import time
 from dataclasses import replace
 
 import rospy
@@ -27,25 +29,32 @@ from course_common.tk_window import open_root
 from . import world_picture as picture
 from .camera import MIN_SIZE_PX
 
-#: Redraw period: 10 frames/s, one per simulated step at real time; more would cost CPU
-#: without showing anything new (a frame is drawn only when the world or the view changed).
-REFRESH_MS = 100
+#: Frames follow the steps: at real time (10 steps/s) each step gets its frame, soon after it
+#: (a fixed 100 ms timer beside the 100 ms steps drifts against them and drops one in ten).
+POLL_MS = 10  # how often the window looks for a new step: one int read, no lock
+#: At most about 10 frames/s, flat out too; a step due at real time is never held back more
+#: than the poll (a frame is drawn only when the world or the view changed).
+FRAME_MIN_S = 0.095
+CHECK_MS = 100  # pause, speed and view changes show within this, step or no step
 
 
 class StageWindow:
     """The window's state and its Tk widgets (made in the main thread by run_window).
 
     view: the node's WorldView; snapshot(): (steps, robots' views, status line) under the
-    node's lock; loop: the StepLoop (the Run menu's pause and speed). The window closes when
-    ROS shuts down.
+    node's lock; steps(): the steps so far, read without it; loop: the StepLoop (the Run
+    menu's pause and speed). The window closes when ROS shuts down.
     """
 
-    def __init__(self, root, world, view, snapshot, loop):
+    def __init__(self, root, world, view, snapshot, loop, steps):
         import tkinter
         self.root = root
         self.view = view
         self.snapshot = snapshot
+        self.steps = steps
         self.loop = loop
+        self._drawn_step = None    # the step of the last frame
+        self._frame_at = self._checked_at = float('-inf')  # monotonic s
         screen = (root.winfo_screenwidth(), root.winfo_screenheight())
         self.home = view.camera(screen)
         self.camera = self.home
@@ -166,6 +175,7 @@ class StageWindow:
     def frame(self):
         """The picture to show now, or None when nothing changed since the last one."""
         step, robots, status = self.snapshot()
+        self._drawn_step = step
         state = (step, self.camera, self.options, status)
         if state == self._drawn:
             return None
@@ -177,10 +187,15 @@ class StageWindow:
         if rospy.is_shutdown():
             self.root.quit()
             return
-        image = self.frame()
-        if image is not None:
-            self._show(image)
-        self.root.after(REFRESH_MS, self.refresh)
+        now = time.monotonic()
+        stepped = self.steps() != self._drawn_step and now - self._frame_at >= FRAME_MIN_S
+        if stepped or now - self._checked_at >= CHECK_MS / 1000.0:
+            self._checked_at = now
+            image = self.frame()
+            if image is not None:
+                self._show(image)
+                self._frame_at = now
+        self.root.after(POLL_MS, self.refresh)
 
     def _show(self, image):
         from PIL import ImageTk
@@ -195,16 +210,17 @@ class StageWindow:
             self._photo.paste(image)
 
 
-def run_window(world, view, snapshot, loop):
+def run_window(world, view, snapshot, loop, steps):
     """Show the window until ROS shuts down, File -> Exit or the window is closed; False if
     none could be opened. world: the World (its path); view: its WorldView; snapshot():
-    (steps, robots' views, status line) under the node's lock; loop: the StepLoop."""
+    (steps, robots' views, status line) under the node's lock; loop: the StepLoop; steps():
+    the steps so far (read without the lock)."""
     root = open_root('stageros: no display (DISPLAY is not set): running without a window '
                      '(use -g to ask for that)',
                      'stageros: the window could not be opened (%s): running without one')
     if root is None:
         return False
-    window = StageWindow(root, world, view, snapshot, loop)
+    window = StageWindow(root, world, view, snapshot, loop, steps)
     root.after(0, window.refresh)
     try:
         root.mainloop()

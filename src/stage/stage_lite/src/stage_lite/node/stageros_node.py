@@ -247,7 +247,7 @@ def main(argv=None):
     try:
         if args.gui:
             from .gui import run_window  # tkinter only when a window is wanted
-            run_window(world, node.view, node.snapshot, node.loop)
+            run_window(world, node.view, node.snapshot, node.loop, lambda: node.clock.steps)
         rospy.spin()
     finally:
         node.loop.stop()
