@@ -5,7 +5,8 @@ in the main thread; the simulation stays in the step thread and never waits for 
 a step has been taken (looked at every POLL_MS, one number read without the lock), or every
 CHECK_MS for what changes without a step, the window takes a snapshot under the node's lock (a
 copy of the robots' views and the status line) and draws it outside the lock, so a slow frame
-is a frame dropped, never a step. With no display (or no Tk) the node WARNs and runs headless, where Stage would fail.
+is a frame dropped, never a step. With no display (or no Tk) the node WARNs and runs headless,
+where Stage would fail.
 
 What the user does, as in Stage's window (libstage/worldgui.cc, canvas.cc):
 - the world file's ``window( size center rotate scale show_data show_grid show_clock
