@@ -4,8 +4,9 @@ types into it and reads its picture back.
 
 Used by test/browser (pytest) and bench/desktop_bench.py. Which desktop: `./ws desktop` by
 default; with DESKTOP_TEST_IMAGE set, that image through DESKTOP_TEST_ENGINE (docker, podman).
-Which browser: Debian's chromium and chromedriver, or DESKTOP_TEST_CHROME and
-DESKTOP_TEST_CHROMEDRIVER (a CI runner's own Chrome).
+Which browser: Debian's chromium and chromedriver; or a chromedriver already serving at
+DESKTOP_TEST_WEBDRIVER (a URL: CI runs the image's own Chromium and chromedriver in a container
+of its own, for the architectures a runner has no browser for).
 """
 import io
 import os
@@ -145,14 +146,15 @@ class Browser:
         from selenium.webdriver.chrome.options import Options
         from selenium.webdriver.chrome.service import Service
         options = Options()
-        options.binary_location = os.environ.get('DESKTOP_TEST_CHROME',
-                                                 shutil.which('chromium') or '/usr/bin/chromium')
-        for flag in CHROME_FLAGS + ('--window-size=%d,%d' % size,):
+        # Chromium's sandbox refuses root (this machine's tests, a container's browser).
+        for flag in CHROME_FLAGS + ('--no-sandbox', '--window-size=%d,%d' % size):
             options.add_argument(flag)
-        if os.getuid() == 0:
-            options.add_argument('--no-sandbox')  # Chromium's sandbox refuses root
-        service = Service(os.environ.get('DESKTOP_TEST_CHROMEDRIVER',
-                                         shutil.which('chromedriver') or '/usr/bin/chromedriver'))
+        remote = os.environ.get('DESKTOP_TEST_WEBDRIVER')
+        if remote:
+            self.driver = webdriver.Remote(command_executor=remote, options=options)
+            return
+        options.binary_location = shutil.which('chromium') or '/usr/bin/chromium'
+        service = Service(shutil.which('chromedriver') or '/usr/bin/chromedriver')
         self.driver = webdriver.Chrome(service=service, options=options)
 
     def open(self, url):
