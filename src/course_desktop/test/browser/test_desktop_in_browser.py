@@ -26,6 +26,7 @@ local_only = pytest.mark.skipif(IN_CONTAINER, reason='checks ./ws desktop on thi
 ROBOT_COLOURS = ((0, 0, 255), (255, 0, 0), (0, 255, 0), (255, 0, 255))
 TURTLESIM_BLUE = (69, 86, 255)  # turtlesim's background
 TURTLESIM_PEN = (179, 184, 255)  # turtlesim's default pen
+RVIZ_BACKGROUND = (48, 48, 48)  # rviz's default background colour
 MIN_ROBOT_PIXELS = 30  # a robot 0.35 m wide at the lesson's 28.8 px/m is about 100 pixels
 
 
@@ -123,6 +124,14 @@ def test_turtlesim_and_its_teleop_terminal(workspace, browser):
         browser.type('rosrun turtlesim turtle_teleop_key\n')
         wait_for(lambda: _teleop_drew(browser), EVENT_DEADLINE_S,
                  'the turtle to draw its trail, driven by arrow keys typed in the page')
+
+
+def test_rviz_shows_its_3d_view(workspace, browser):
+    with desktop(workspace, env=private_master()) as d:
+        browser.open(d.url()).wait_connected()
+        browser.type('roscore -p "${ROS_MASTER_URI##*:}" > /dev/null & rviz\n')
+        wait_for(lambda: colour_spot(browser.screenshot(), RVIZ_BACKGROUND, 4)[0] > 100000,
+                 EVENT_DEADLINE_S, "rviz's 3D view (drawn by OpenGL on the desktop's X server)")
 
 
 def _teleop_drew(browser):
