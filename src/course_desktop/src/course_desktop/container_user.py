@@ -67,10 +67,8 @@ def main(argv=None):
         print('desktop: %s' % user.note, flush=True)
     if os.getuid() == 0:
         become(user)
-    if not os.access(WORKSPACE, os.W_OK | os.X_OK):
-        sys.exit('desktop: uid %d cannot write to %s (the folder you mounted): make it yours '
-                 '(chmod u+rwx), or start the container with --user "$(id -u):$(id -g)"'
-                 % (os.getuid(), WORKSPACE))
+    if not can_write(WORKSPACE):
+        sys.exit('desktop: %s' % cannot_write_message(os.getuid(), info.st_uid))
     home = HOME if os.access(HOME, os.W_OK) else _scratch_home()
     env = dict(os.environ, HOME=home, USER=_name(), LOGNAME=_name())
     os.chdir('/workspace')
@@ -78,10 +76,36 @@ def main(argv=None):
                + args, env)
 
 
+def can_write(folder):
+    """True when this user can make a file in folder: tried, as Docker Desktop's shared folders
+    let users write whatever their mode bits say."""
+    try:
+        fd, path = tempfile.mkstemp(prefix='.desktop-write-check-', dir=folder)
+    except OSError:
+        return False
+    os.close(fd)
+    os.unlink(path)
+    return True
+
+
+def cannot_write_message(uid, folder_uid):
+    """What to do when the desktop's user cannot write to the mounted folder (pure)."""
+    if folder_uid == 0:
+        # Rootful Docker on Linux makes a missing host folder itself, as root.
+        return ('%s belongs to root on your computer (Docker made it, as it did not exist), so '
+                'the desktop (uid %d) cannot write to it: make the folder yourself before '
+                '`docker run` (mkdir catkin_ws), or give it to yourself: sudo chown "$(id -u):'
+                '$(id -g)" catkin_ws; with rootless Podman, add --userns=keep-id'
+                % (WORKSPACE, uid))
+    return ('uid %d cannot write to %s (the folder you mounted): give yourself write permission '
+            'on it (chmod u+rwx catkin_ws)' % (uid, WORKSPACE))
+
+
 def become(user):
     """Gives the image's student this uid and gid (so names and ~ stay right), gives it its
     home, then drops root for good."""
-    if (user.uid, user.gid) != (IMAGE_UID, IMAGE_GID):
+    current = pwd.getpwnam(USER)
+    if (user.uid, user.gid) != (current.pw_uid, current.pw_gid):
         # -o: the host's ids may already name someone in the image (macOS's staff is gid 20).
         _run(['groupmod', '-o', '-g', str(user.gid), USER])
         _run(['usermod', '-o', '-u', str(user.uid), '-g', str(user.gid), USER])
@@ -109,3 +133,7 @@ def _name():
         return pwd.getpwuid(os.getuid()).pw_name
     except KeyError:
         return USER
+
+
+if __name__ == '__main__':
+    main()

@@ -112,7 +112,8 @@ class GatewayHandler(WebSocketRequestHandlerMixIn, http.server.SimpleHTTPRequest
             target = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
             target.connect(self.server.vnc_socket)
         except OSError as err:
-            self.log_error('cannot reach the VNC server at %s: %s', self.server.vnc_socket, err)
+            sys.stderr.write('desktop: cannot reach the VNC server at %s: %s\n'
+                             % (self.server.vnc_socket, err))
             self.request.close(1011, 'the desktop\'s VNC server is not running')
             return
         self.server.count_client(+1)
@@ -127,7 +128,10 @@ class GatewayHandler(WebSocketRequestHandlerMixIn, http.server.SimpleHTTPRequest
             super().log_message(fmt, *args)
 
     def log_error(self, fmt, *args):
-        sys.stderr.write('desktop: %s\n' % (fmt % args))
+        # http.server's own errors are a browser's requests answered 404 (noVNC asks for a
+        # package.json Debian leaves out) or a page closed mid-request: --verbose shows them.
+        if self.server.verbose:
+            super().log_error(fmt, *args)
 
 
 def relay(ws, target):

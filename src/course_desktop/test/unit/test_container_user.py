@@ -1,6 +1,17 @@
 """course_desktop.container_user: who runs the desktop in the image."""
+import os
+import subprocess
+import sys
+
 import pytest
-from course_desktop.container_user import IMAGE_GID, IMAGE_UID, choose_user, is_mount_point
+from course_desktop.container_user import (
+    IMAGE_GID,
+    IMAGE_UID,
+    can_write,
+    cannot_write_message,
+    choose_user,
+    is_mount_point,
+)
 
 
 def test_the_folder_owner_runs_it():
@@ -39,3 +50,31 @@ def test_mount_points_from_mountinfo(tmp_path):
     assert is_mount_point('/home/student/catkin_ws', str(mountinfo))
     assert not is_mount_point('/home/student', str(mountinfo))
     assert not is_mount_point('/x', str(tmp_path / 'missing'))
+
+
+def test_a_root_owned_folder_that_cannot_be_written_says_how_to_fix_it_on_the_host():
+    message = cannot_write_message(IMAGE_UID, 0)
+    assert 'mkdir catkin_ws' in message and 'sudo chown' in message
+    assert '--userns=keep-id' in message
+
+
+def test_a_folder_of_someone_else_says_to_give_write_permission():
+    assert 'chmod u+rwx' in cannot_write_message(1001, 1001)
+
+
+def test_can_write_tries_for_real(tmp_path):
+    assert can_write(str(tmp_path))
+    assert list(tmp_path.iterdir()) == []  # the probe file is gone
+    assert not can_write(str(tmp_path / 'missing'))
+
+
+def test_the_module_runs_its_main(tmp_path):
+    # Without the image's folder the command says so and exits 1 (the image's `desktop`
+    # runs this module with -m: a module that only defined main would exit 0 silently).
+    done = subprocess.run([sys.executable, '-m', 'course_desktop.container_user'],
+                          capture_output=True, text=True, timeout=60,
+                          env=dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path)))
+    if os.path.exists('/home/student/catkin_ws'):
+        pytest.skip("this machine has the image's folder")
+    assert done.returncode == 1
+    assert '/home/student/catkin_ws cannot be read' in done.stderr

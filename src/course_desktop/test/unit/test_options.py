@@ -1,9 +1,11 @@
 """course_desktop.options: the desktop's command line."""
 import errno
+import http.server
 import socket
+import threading
 
 import pytest
-from course_desktop.cli import bind_error_message
+from course_desktop.cli import DesktopError, bind_error_message, self_check
 from course_desktop.options import DEFAULT_PORT, TOKEN_ENV, parse_options
 
 SETUP = ['--course-setup', '/ws/devel/setup.bash']
@@ -77,3 +79,31 @@ def test_without_the_course_setup_it_says_so(capsys):
 ])
 def test_a_failed_bind_says_what_to_do(err, words):
     assert words in bind_error_message(err, '127.0.0.1', 6080)
+
+
+def test_a_page_that_cannot_be_reached_is_a_clear_error():
+    with socket.socket() as closed:
+        closed.bind(('127.0.0.1', 0))
+        port = closed.getsockname()[1]
+    with pytest.raises(DesktopError, match='cannot be reached from this machine'):
+        self_check('http://127.0.0.1:%d/' % port)
+
+
+def test_a_page_that_answers_something_else_is_a_clear_error():
+    class Other(http.server.BaseHTTPRequestHandler):
+        def do_GET(self):
+            self.send_response(200)
+            self.send_header('Content-Length', '0')
+            self.end_headers()
+
+        def log_message(self, *args):
+            pass
+    server = http.server.HTTPServer(('127.0.0.1', 0), Other)
+    thread = threading.Thread(target=server.handle_request, daemon=True)
+    thread.start()
+    try:
+        with pytest.raises(DesktopError, match='answered HTTP 200'):
+            self_check('http://127.0.0.1:%d/' % server.server_address[1])
+    finally:
+        thread.join(10)
+        server.server_close()
