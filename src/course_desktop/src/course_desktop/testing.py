@@ -16,7 +16,7 @@ import subprocess
 
 from course_common.ports import free_port
 from course_common.processes import ChildProcess
-from course_common.waiting import wait_for
+from course_common.waiting import WaitError, wait_for
 
 START_DEADLINE_S = 60.0  # a desktop up, a page connected (a cold container start is slower)
 EVENT_DEADLINE_S = 60.0  # a window to appear, a command typed to finish
@@ -60,8 +60,7 @@ class LocalDesktop:
 
     def url(self, timeout_s=START_DEADLINE_S):
         """The URL it printed to open (once it is ready), or WaitError with its output."""
-        return wait_for(lambda: _printed_url(self.process.lines()), timeout_s,
-                        'the desktop to print its URL', alive=self.process.alive)
+        return _wait_url(self.process, timeout_s, 'the desktop to print its URL')
 
     def pid(self):
         return self.process.pid
@@ -102,8 +101,7 @@ class ContainerDesktop:
         return self
 
     def url(self, timeout_s=START_DEADLINE_S):
-        printed = wait_for(lambda: _printed_url(self.process.lines()), timeout_s,
-                           'the desktop container to print its URL', alive=self.process.alive)
+        printed = _wait_url(self.process, timeout_s, 'the desktop container to print its URL')
         # Inside, it names its own port; outside, the port published for it.
         return re.sub(r'^http://localhost:\d+', 'http://localhost:%d' % self.port, printed)
 
@@ -128,6 +126,14 @@ def desktop(workspace, *args, **kwargs):
     if os.environ.get('DESKTOP_TEST_IMAGE'):
         return ContainerDesktop(workspace, *args, **kwargs)
     return LocalDesktop(workspace, *args, **kwargs)
+
+
+def _wait_url(process, timeout_s, what):
+    try:
+        return wait_for(lambda: _printed_url(process.lines()), timeout_s, what,
+                        alive=process.alive)
+    except WaitError as err:
+        raise WaitError('%s; it printed:\n%s' % (err, process.tail())) from None
 
 
 def _printed_url(lines):
