@@ -99,14 +99,16 @@ class Desktop:
                 # Inside a container, the port is whatever `docker run -p` published: the
                 # README's command publishes it on the host's loopback, same number.
                 return ['http://localhost:%d%s' % (port, path)]
-            return ['http://%s:%d%s' % (socket.gethostname(), port, path),
-                    'http://127.0.0.1:%d%s' % (port, path)]
+            # This machine's own address first: its name may not resolve (a fresh VM, a
+            # renamed machine); the name is for the other machines.
+            return ['http://127.0.0.1:%d%s' % (port, path),
+                    'http://%s:%d%s' % (socket.gethostname(), port, path)]
         return ['http://%s:%d%s' % (url_host(listen), port, path)]
 
     def banner(self):
         urls = self.urls()
         lines = ['desktop: open %s' % urls[0]]
-        lines += ['desktop:   or %s' % url for url in urls[1:]]
+        lines += ['desktop:   from another machine: %s' % url for url in urls[1:]]
         lines += ['desktop: your workspace: %s (overlaid on the course workspace)'
                   % self.options.workspace,
                   'desktop: X programs from elsewhere: DISPLAY=%s XAUTHORITY=%s'

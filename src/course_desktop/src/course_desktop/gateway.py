@@ -14,7 +14,7 @@ import sys
 import threading
 
 from course_desktop.access import WEBSOCKET_PATH, novnc_location
-from websockify.websocket import WebSocket, WebSocketWantReadError, WebSocketWantWriteError
+from websockify.websocket import WebSocketWantReadError, WebSocketWantWriteError
 from websockify.websocketserver import WebSocketRequestHandlerMixIn
 
 NOVNC_DIR = '/usr/share/novnc'  # Debian's novnc package
@@ -27,9 +27,13 @@ REFUSED_PAGE = '''<!DOCTYPE html>
 '''
 
 
-class BinaryWebSocket(WebSocket):
+class BinaryWebSocket(WebSocketRequestHandlerMixIn.SocketClass):
     """noVNC's WebSocket: binary frames; answers the 'binary' sub-protocol if it is offered
-    (older noVNC pages ask for it; websockify's own server answers it the same way)."""
+    (older noVNC pages ask for it; websockify's own server answers it the same way).
+
+    Built on the mix-in's own socket class: websockify 0.10 (Debian 12) makes a plain
+    WebSocket(), 0.12 (Debian 13) an HttpWebSocket(handler) that answers through the handler.
+    """
 
     def select_subprotocol(self, protocols):
         offered = [p.strip() for p in protocols]
