@@ -44,3 +44,15 @@ def test_stop_tree_ends_background_jobs_other_sessions_and_orphans():
 def _zombie(pid):
     with open('/proc/%d/stat' % pid) as f:
         return f.read().rsplit(')', 1)[1].split()[0] == 'Z'
+
+
+def test_children_are_this_process_children_only():
+    from course_desktop.reaper import children
+    child = subprocess.Popen(['sleep', '30'])
+    try:
+        assert child.pid in children()
+        assert os.getpid() not in children()
+    finally:
+        child.kill()
+        child.wait()
+    assert child.pid not in children()
