@@ -57,6 +57,9 @@ def main(argv=None):
 
 
 class Desktop:
+    """One desktop: its door (the gateway), its X session, its session folder; start() raises
+    DesktopError, stop() undoes whatever start() did, whenever it stopped."""
+
     def __init__(self, options):
         self.options = options
         self.policy = AccessPolicy(options.port, options.token)
