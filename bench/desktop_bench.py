@@ -25,16 +25,15 @@ import re
 import shutil
 import statistics
 import subprocess
+import sys
 import tempfile
 import threading
 import time
 
-import rospy
 from course_common.ports import free_port
-from course_common.processes import cpu_ticks, descendants, process_table
-from course_common.waiting import wait_for
+from course_common.processes import ChildProcess, cpu_ticks, descendants, process_table
+from course_common.waiting import WaitError, wait_for
 from course_desktop.testing import Browser, LocalDesktop, colour_spot
-from rosgraph_msgs.msg import Clock
 
 RUNS = 3
 WINDOW_S = 20.0
@@ -231,40 +230,44 @@ def page_changes(browser):
     return browser.driver.execute_script('return window.__changes.length')
 
 
+#: A separate process (each run has a master of its own; rospy joins only one per process)
+#: that prints the wall time, in ms, at which each /clock message arrives.
+CLOCK_PRINTER = '''
+import time, rospy
+from rosgraph_msgs.msg import Clock
+rospy.init_node('desktop_bench_clock', anonymous=True)
+rospy.Subscriber('/clock', Clock, lambda _: print('%.3f' % (time.time() * 1000.0), flush=True))
+rospy.spin()
+'''
+
+
 def latency(browser, x_env, window, samples, master_port):
     """Median ms from /clock advancing after one step to the page's status line changing."""
-    os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % master_port
-    clock_times = []
-    lock = threading.Lock()
-
-    def on_clock(_msg):
-        with lock:
-            clock_times.append(time.time() * 1000.0)
-    if not rospy.core.is_initialized():
-        rospy.init_node('desktop_bench', anonymous=True, disable_signals=True)
-    sub = rospy.Subscriber('/clock', Clock, on_clock, queue_size=100)
-    xdotool(x_env, 'windowactivate', '--sync', window)
-    xdotool(x_env, 'key', 'p')  # pause (Stage's key; its window has the keyboard)
-    time.sleep(1.0)
-    delays = []
-    for _ in range(samples):
-        with lock:
-            clock_times.clear()
-        changes_before = browser.driver.execute_script('return window.__changes.length')
-        xdotool(x_env, 'key', 'period')  # one step
+    clock = ChildProcess([sys.executable, '-c', CLOCK_PRINTER],
+                         env={'ROS_MASTER_URI': 'http://localhost:%d' % master_port}).start()
+    try:
         try:
-            wait_for(lambda c=changes_before: browser.driver.execute_script(
-                'return window.__changes.length') > c, 5, 'the page to show the step')
-        except AssertionError:
-            continue
-        time.sleep(0.3)
-        changed = browser.driver.execute_script('return window.__changes')[changes_before]
-        with lock:
-            stepped = clock_times[0] if clock_times else None
-        if stepped is not None:
-            delays.append(changed - stepped)
-    sub.unregister()
-    return statistics.median(delays) if delays else float('nan')
+            wait_for(lambda: len(clock.lines()) > 5, 30, '/clock to reach the bench')
+        except WaitError as err:
+            raise WaitError('%s; the listener said:\n%s' % (err, clock.tail())) from None
+        xdotool(x_env, 'windowactivate', '--sync', window)
+        xdotool(x_env, 'key', 'p')  # pause (Stage's key; its window has the keyboard)
+        time.sleep(1.0)
+        delays = []
+        for _ in range(samples):
+            ticks, changes = len(clock.lines()), page_changes(browser)
+            xdotool(x_env, 'key', 'period')  # one step
+            try:
+                wait_for(lambda c=changes: page_changes(browser) > c, 5, 'the step in the page')
+                wait_for(lambda t=ticks: len(clock.lines()) > t, 5, 'the step on /clock')
+            except WaitError:
+                continue
+            time.sleep(0.3)
+            shown = browser.driver.execute_script('return window.__changes')[changes]
+            delays.append(shown - float(clock.lines()[ticks]))
+        return statistics.median(delays) if delays else float('nan')
+    finally:
+        clock.stop()
 
 
 def main(argv=None):
