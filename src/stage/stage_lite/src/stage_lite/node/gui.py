@@ -37,6 +37,7 @@ POLL_MS = 10  # how often the window looks for a new step: one int read, no lock
 #: than the poll (a frame is drawn only when the world or the view changed).
 FRAME_MIN_S = 0.095
 CHECK_MS = 100  # pause, speed and view changes show within this, step or no step
+REST_MS = int(FRAME_MIN_S * 1000) - 2 * POLL_MS  # after a frame: no new one is due sooner
 
 
 class StageWindow:
@@ -56,6 +57,9 @@ class StageWindow:
         self.loop = loop
         self._drawn_step = None    # the step of the last frame
         self._frame_at = self._checked_at = float('-inf')  # monotonic s
+        # One Tcl command for every poll: tkinter's after() registers (and later deletes) a
+        # new command at each call, which at 100 polls a second costs more than the polls.
+        self._poll = root.register(self.refresh)
         screen = (root.winfo_screenwidth(), root.winfo_screenheight())
         self.home = view.camera(screen)
         self.camera = self.home
@@ -190,13 +194,16 @@ class StageWindow:
             return
         now = time.monotonic()
         stepped = self.steps() != self._drawn_step and now - self._frame_at >= FRAME_MIN_S
+        drawn = False
         if stepped or now - self._checked_at >= CHECK_MS / 1000.0:
             self._checked_at = now
             image = self.frame()
             if image is not None:
                 self._show(image)
                 self._frame_at = now
-        self.root.after(POLL_MS, self.refresh)
+                drawn = True
+        # Just after a frame the next one cannot be due before FRAME_MIN_S: look again then.
+        self.root.tk.call('after', REST_MS if drawn else POLL_MS, self._poll)
 
     def _show(self, image):
         from PIL import ImageTk
