@@ -2,8 +2,9 @@
 
 Used by the tools (convoy_demo's roslaunch and rosbag record, rviz_snapshot's rviz and Xvfb),
 the rostest nodes and the benchmarks. Also what a benchmark reads of a process in /proc:
-cpu_ticks, rss_mb, peak_rss_mb and the process tree (process_table, descendants); and the
-texts of the rospy log lines a process printed (rospy_texts).
+cpu_ticks, rss_mb, peak_rss_mb, whether it still runs (pid_running) and the process tree
+(process_table, descendants); and the texts of the rospy log lines a process printed
+(rospy_texts).
 """
 import codecs
 import contextlib
@@ -83,6 +84,21 @@ def descendants(root, table=None):
             pids.append(pid)
         todo.extend(children.get(pid, ()))
     return pids
+
+
+def stat_state(stat_line):
+    """The state letter (R, S, Z, ...) of a /proc/<pid>/stat line (the name may hold ') ')."""
+    return stat_line.rsplit(')', 1)[1].split()[0]
+
+
+def pid_running(pid):
+    """True while process pid runs: a pid that is gone, or a zombie (ended, only its
+    parent's wait missing), does not."""
+    try:
+        with open('/proc/%d/stat' % pid, encoding='ascii', errors='replace') as stat:
+            return stat_state(stat.read()) != 'Z'
+    except (OSError, IndexError):
+        return False
 
 
 def cpu_ticks(pid):

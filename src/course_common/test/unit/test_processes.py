@@ -15,12 +15,14 @@ from course_common.processes import (
     cpu_ticks,
     descendants,
     peak_rss_mb,
+    pid_running,
     process_table,
     rss_mb,
     run_to_exit,
     spawn,
     split_lines,
     stat_cpu_ticks,
+    stat_state,
     status_rss_mb,
 )
 from course_common.waiting import WaitError, wait_for
@@ -145,16 +147,8 @@ def test_stop_kills_what_the_process_left_in_its_session():
     proc = spawn(['sh', '-c', 'sleep 60 & echo $!; wait'])
     child = int(proc.wait_line('', DEADLINE_S))
     proc.stop()
-    wait_for(lambda: not os.path.exists('/proc/%d' % child) or _zombie(child), DEADLINE_S,
+    wait_for(lambda: not pid_running(child), DEADLINE_S,
              'the grandchild killed with the session')
-
-
-def _zombie(pid):
-    try:
-        with open('/proc/%d/stat' % pid) as stat:
-            return stat.read().rsplit(')', 1)[1].split()[0] == 'Z'
-    except OSError:
-        return True
 
 
 def test_interrupt_then_wait_exit():
@@ -265,3 +259,22 @@ def test_many_small_writes_keep_every_line_in_order():
     assert proc.lines() == [str(i) for i in range(5000)]
     assert proc.tail(2) == '4998\n4999'
     proc.stop()
+
+
+@pytest.mark.parametrize('line, state', [
+    ('42 (sleep) S 1 42 42 0 -1', 'S'),
+    ('43 (a ) Z name) Z 1 43 43 0 -1', 'Z'),  # a name may hold ') '
+    ('44 (python3) R 1 44 44 0 -1', 'R'),
+])
+def test_stat_state(line, state):
+    assert stat_state(line) == state
+
+
+def test_pid_running_counts_neither_a_zombie_nor_a_reaped_child():
+    import subprocess
+    assert pid_running(os.getpid())
+    child = subprocess.Popen(['true'])
+    wait_for(lambda: not pid_running(child.pid), DEADLINE_S, 'the child to end (a zombie)')
+    assert os.path.exists('/proc/%d' % child.pid)  # not reaped yet: a zombie
+    child.wait()
+    assert not pid_running(child.pid)

@@ -16,7 +16,7 @@ import os
 import signal
 import time
 
-from course_common.processes import descendants, process_table
+from course_common.processes import descendants, pid_running, process_table
 
 PR_SET_CHILD_SUBREAPER = 36  # <linux/prctl.h>
 STOP_GRACE_S = 10.0  # roslaunch gives its nodes this long for SIGINT before escalating
@@ -68,13 +68,13 @@ def stop_tree(known=(), grace_s=STOP_GRACE_S, root=None):
     deadline = time.monotonic() + grace_s
     while time.monotonic() < deadline:
         reap_orphans(known)
-        if not _running(tree(root)):
+        if not running(tree(root)):
             return []
         time.sleep(POLL_S)
-    stubborn = _running(tree(root))
+    stubborn = running(tree(root))
     _signal_all(stubborn, signal.SIGKILL)
     deadline = time.monotonic() + grace_s
-    while _running(tree(root)) and time.monotonic() < deadline:
+    while running(tree(root)) and time.monotonic() < deadline:
         reap_orphans(known)
         time.sleep(POLL_S)
     return stubborn
@@ -86,15 +86,6 @@ def _signal_all(pids, sig):
             os.kill(pid, sig)
 
 
-def _running(pids):
-    """The pids that are not zombies (a zombie has ended; only its parent's wait is missing)."""
-    alive = []
-    for pid in pids:
-        try:
-            with open('/proc/%d/stat' % pid, encoding='utf-8', errors='replace') as f:
-                state = f.read().rsplit(')', 1)[1].split()[0]
-        except (OSError, IndexError):
-            continue
-        if state != 'Z':
-            alive.append(pid)
-    return alive
+def running(pids):
+    """Those of pids that still run (course_common.processes.pid_running)."""
+    return [pid for pid in pids if pid_running(pid)]

@@ -9,7 +9,7 @@ import socket
 
 import pytest
 from course_common.ports import free_port
-from course_common.processes import descendants, process_table
+from course_common.processes import descendants, pid_running, process_table
 from course_desktop.testing import (
     EVENT_DEADLINE_S,
     Browser,
@@ -186,17 +186,8 @@ def test_ctrl_c_stops_everything_it_started_even_what_left_its_process_group(
     finally:
         code = d.stop()
     assert code == 0, d.output()
-    survivors = [pid for pid in tree if os.path.exists('/proc/%d' % pid)
-                 and _not_zombie(pid)]
+    survivors = [pid for pid in tree if pid_running(pid)]
     assert not survivors, [tree[pid] for pid in survivors]
-
-
-def _not_zombie(pid):
-    try:
-        with open('/proc/%d/stat' % pid) as f:
-            return f.read().rsplit(')', 1)[1].split()[0] != 'Z'
-    except OSError:
-        return False
 
 
 @local_only

@@ -18,6 +18,8 @@ import subprocess
 import sys
 import time
 
+from course_common.processes import pid_running
+
 from multihost import netns
 
 MASTER_PORT = 11311  # each namespace has its own ports: the standard one never collides
@@ -64,16 +66,6 @@ def host_env(i, base=None):
     env['ROS_IP'] = netns.host_address(i)
     env['ROS_MASTER_URI'] = master_uri()
     return env
-
-
-def _pid_alive(pid):
-    """True while process pid runs (a zombie, ended but not yet reaped, does not count)."""
-    try:
-        with open('/proc/%d/stat' % pid, encoding='ascii', errors='replace') as f:
-            # state is the field after the parenthesised command name
-            return f.read().rsplit(')', 1)[1].split()[0] != 'Z'
-    except (OSError, IndexError):
-        return False
 
 
 class Hosts:
@@ -138,7 +130,7 @@ def _stop_processes(names):
             with contextlib.suppress(ProcessLookupError):
                 os.kill(pid, sig)
         while pids and time.monotonic() < deadline:
-            pids = {pid for pid in pids if _pid_alive(pid)}
+            pids = {pid for pid in pids if pid_running(pid)}
             time.sleep(0.05)
         deadline = time.monotonic() + STOP_WAIT_S
 
@@ -223,7 +215,7 @@ def run(argv=None):
         elif args.command == 'down':
             remove(args.prefix)
             if args.stale:
-                for prefix in netns.stale_prefixes(list_namespaces(), _pid_alive):
+                for prefix in netns.stale_prefixes(list_namespaces(), pid_running):
                     remove(prefix)
         elif args.command == 'status':
             _status(args.prefix)
