@@ -70,13 +70,11 @@ class Desktop:
         prepare_workspace(self.options.workspace)
         reaper.become_subreaper()
         self.runtime_dir = tempfile.mkdtemp(prefix='course-desktop-')  # mode 0700
-        self.gateway = bind_gateway(self.options, self.policy,
-                                    os.path.join(self.runtime_dir, 'vnc.sock'))
         env = dict(os.environ, COURSE_WS_SETUP=self.options.course_setup,
                    COURSE_DESKTOP_WORKSPACE=self.options.workspace)
         env.pop('WAYLAND_DISPLAY', None)
-        self.session = XSession(self.runtime_dir, self.options.geometry, RCFILE, env,
-                                log_dir=self.runtime_dir)
+        self.session = XSession(self.runtime_dir, self.options.geometry, RCFILE, env)
+        self.gateway = bind_gateway(self.options, self.policy, self.session.vnc_socket)
         try:
             self.session.start()
         except SessionError as err:

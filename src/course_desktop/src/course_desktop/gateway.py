@@ -7,6 +7,7 @@ X servers have no TCP port at all, so this door, with its token and its Host and
 checks, is the only way in.
 """
 import functools
+import html
 import http.server
 import select
 import socket
@@ -60,7 +61,8 @@ class GatewayHandler(WebSocketRequestHandlerMixIn, http.server.SimpleHTTPRequest
         return True
 
     def refuse(self, status, reason):
-        body = (REFUSED_PAGE % {'title': 'access refused', 'reason': _html(reason)}).encode()
+        body = (REFUSED_PAGE % {'title': 'access refused',
+                                'reason': html.escape(reason)}).encode()
         self.send_response(status)
         self.send_header('Content-Type', 'text/html; charset=utf-8')
         self.send_header('Content-Length', str(len(body)))
@@ -120,11 +122,9 @@ class GatewayHandler(WebSocketRequestHandlerMixIn, http.server.SimpleHTTPRequest
                              % (self.server.vnc_socket, err))
             self.request.close(1011, 'the desktop\'s VNC server is not running')
             return
-        self.server.count_client(+1)
         try:
             relay(self.request, target)
         finally:
-            self.server.count_client(-1)
             target.close()
 
     def log_message(self, fmt, *args):
@@ -177,10 +177,6 @@ def _send_whole(ws, data):
             continue
 
 
-def _html(text):
-    return text.replace('&', '&amp;').replace('<', '&lt;').replace('>', '&gt;')
-
-
 class Gateway(http.server.ThreadingHTTPServer):
     """The HTTP server: bound at construction (OSError if the address cannot be had)."""
 
@@ -192,20 +188,9 @@ class Gateway(http.server.ThreadingHTTPServer):
         self.policy = policy
         self.vnc_socket = vnc_socket
         self.verbose = verbose
-        self._clients = 0
-        self._clients_lock = threading.Lock()
+        self._thread = None
         handler = functools.partial(GatewayHandler, directory=novnc_dir)
         super().__init__((address, port), handler)
-
-    def count_client(self, step):
-        with self._clients_lock:
-            self._clients += step
-
-    @property
-    def clients(self):
-        """How many browser pages are connected to the desktop now."""
-        with self._clients_lock:
-            return self._clients
 
     def serve_in_thread(self, poll_s=0.5):
         """Serves in a thread of its own; shutdown_now() takes up to poll_s to stop it."""
@@ -215,7 +200,7 @@ class Gateway(http.server.ThreadingHTTPServer):
 
     def shutdown_now(self):
         """Stops serving (if it started) and closes the listening socket."""
-        if getattr(self, '_thread', None) is not None:
+        if self._thread is not None:
             self.shutdown()
             self._thread = None
         self.server_close()

@@ -44,26 +44,30 @@ def workspace_root():
     return here
 
 
-class LocalDesktop:
-    """`./ws desktop ARGS` on this machine, on a free port; a context manager."""
+class _Desktop:
+    """A desktop's command (its `process`, a ChildProcess) on `port`; a context manager."""
 
-    def __init__(self, workspace, *args, port=None, env=None):
-        self.port = port or free_port()
+    def __init__(self, workspace, port):
         self.workspace = workspace
-        argv = [os.path.join(workspace_root(), 'ws'), 'desktop', '--port', str(self.port),
-                '--workspace', workspace] + list(args)
-        self.process = ChildProcess(argv, env=env, stop_timeout_s=30.0)
+        self.port = port or free_port()
+        self.process = None
 
     def start(self):
         self.process.start()
         return self
 
     def url(self, timeout_s=START_DEADLINE_S):
-        """The URL it printed to open (once it is ready), or WaitError with its output."""
-        return _wait_url(self.process, timeout_s, 'the desktop to print its URL')
+        """The URL it printed to open (once it is ready), as this machine reaches it; or
+        WaitError with its output."""
+        try:
+            printed = wait_for(lambda: _printed_url(self.process.lines()), timeout_s,
+                               'the desktop to print its URL', alive=self.process.alive)
+        except WaitError as err:
+            raise WaitError('%s; it printed:\n%s' % (err, self.process.tail())) from None
+        return self._reached(printed)
 
-    def pid(self):
-        return self.process.pid
+    def _reached(self, printed):
+        return printed
 
     def output(self):
         return self.process.output()
@@ -79,13 +83,25 @@ class LocalDesktop:
         self.stop()
 
 
-class ContainerDesktop:
+class LocalDesktop(_Desktop):
+    """`./ws desktop ARGS` on this machine, on a free port."""
+
+    def __init__(self, workspace, *args, port=None, env=None):
+        super().__init__(workspace, port)
+        argv = [os.path.join(workspace_root(), 'ws'), 'desktop', '--port', str(self.port),
+                '--workspace', workspace] + list(args)
+        self.process = ChildProcess(argv, env=env, stop_timeout_s=30.0)
+
+    def pid(self):
+        return self.process.pid
+
+
+class ContainerDesktop(_Desktop):
     """`ENGINE run --rm -p 127.0.0.1:PORT:6080 -v WORKSPACE:/home/student/catkin_ws IMAGE
-    desktop`, the README's command; a context manager."""
+    desktop`, the README's command."""
 
     def __init__(self, workspace, *args, port=None, image=None, engine=None, env=None):
-        self.port = port or free_port()
-        self.workspace = workspace
+        super().__init__(workspace, port)
         self.engine = engine or os.environ.get('DESKTOP_TEST_ENGINE', 'docker')
         self.name = 'course-desktop-test-%d' % self.port
         argv = [self.engine, 'run', '--rm', '--name', self.name,
@@ -96,17 +112,9 @@ class ContainerDesktop:
         argv += [image or os.environ['DESKTOP_TEST_IMAGE'], 'desktop'] + list(args)
         self.process = ChildProcess(argv, stop_timeout_s=60.0)
 
-    def start(self):
-        self.process.start()
-        return self
-
-    def url(self, timeout_s=START_DEADLINE_S):
-        printed = _wait_url(self.process, timeout_s, 'the desktop container to print its URL')
+    def _reached(self, printed):
         # Inside, it names its own port; outside, the port published for it.
         return re.sub(r'^http://localhost:\d+', 'http://localhost:%d' % self.port, printed)
-
-    def output(self):
-        return self.process.output()
 
     def stop(self):
         """`docker stop` (SIGTERM to the desktop), then the run command's exit code."""
@@ -114,26 +122,12 @@ class ContainerDesktop:
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=90)
         return self.process.stop()
 
-    def __enter__(self):
-        return self.start()
-
-    def __exit__(self, *exc):
-        self.stop()
-
 
 def desktop(workspace, *args, **kwargs):
     """The desktop under test: the image's if DESKTOP_TEST_IMAGE is set, else ./ws desktop."""
     if os.environ.get('DESKTOP_TEST_IMAGE'):
         return ContainerDesktop(workspace, *args, **kwargs)
     return LocalDesktop(workspace, *args, **kwargs)
-
-
-def _wait_url(process, timeout_s, what):
-    try:
-        return wait_for(lambda: _printed_url(process.lines()), timeout_s, what,
-                        alive=process.alive)
-    except WaitError as err:
-        raise WaitError('%s; it printed:\n%s' % (err, process.tail())) from None
 
 
 def _printed_url(lines):

@@ -46,10 +46,11 @@ def xvnc_argv(geometry, vnc_socket, xauthority):
 
 
 class XSession:
-    """Xvnc, openbox and the first terminal; started by start(), stopped with everything else
-    the desktop started (course_desktop.processes), or by stop() here."""
+    """Xvnc, openbox and the first terminal, their files (cookie, VNC socket, configuration,
+    logs) in runtime_dir; started by start(), stopped with everything else the desktop
+    started (course_desktop.reaper)."""
 
-    def __init__(self, runtime_dir, geometry, rcfile, env, log_dir):
+    def __init__(self, runtime_dir, geometry, rcfile, env):
         self.runtime_dir = runtime_dir
         self.geometry = geometry
         self.rcfile = rcfile
@@ -57,7 +58,6 @@ class XSession:
         self.xauthority = os.path.join(runtime_dir, 'Xauthority')
         self.display = None
         self._env = dict(env)
-        self._log_dir = log_dir
         self._cookie = secrets.token_hex(16)
         self.xvnc = self.window_manager = self.terminal = None
 
@@ -139,7 +139,7 @@ class XSession:
 
     def _child(self, name, argv, env=None, cwd=None):
         child = ChildProcess(argv, env=env or self.env(), cwd=cwd,
-                             log_path=os.path.join(self._log_dir, name + '.log'))
+                             log_path=os.path.join(self.runtime_dir, name + '.log'))
         try:
             return child.start()
         except OSError as err:

@@ -3,7 +3,7 @@
 Imported only without -g, so a headless node never loads tkinter or ImageTk. The window runs
 in the main thread; the simulation stays in the step thread and never waits for a frame: when
 a step has been taken (looked at every POLL_MS, one number read without the lock), or every
-CHECK_MS for what changes without a step, the window takes a snapshot under the node's lock (a
+CHECK_S for what changes without a step, the window takes a snapshot under the node's lock (a
 copy of the robots' views and the status line) and draws it outside the lock, so a slow frame
 is a frame dropped, never a step. With no display (or no Tk) the node WARNs and runs headless,
 where Stage would fail.
@@ -36,7 +36,7 @@ POLL_MS = 10  # how often the window looks for a new step: one int read, no lock
 #: At most about 10 frames/s, flat out too; a step due at real time is never held back more
 #: than the poll (a frame is drawn only when the world or the view changed).
 FRAME_MIN_S = 0.095
-CHECK_MS = 100  # pause, speed and view changes show within this, step or no step
+CHECK_S = 0.1  # pause, speed and view changes show within this, step or no step
 REST_MS = int(FRAME_MIN_S * 1000) - 2 * POLL_MS  # after a frame: no new one is due sooner
 
 
@@ -55,7 +55,6 @@ class StageWindow:
         self.snapshot = snapshot
         self.steps = steps
         self.loop = loop
-        self._drawn_step = None    # the step of the last frame
         self._frame_at = self._checked_at = float('-inf')  # monotonic s
         # One Tcl command for every poll: tkinter's after() registers (and later deletes) a
         # new command at each call, which at 100 polls a second costs more than the polls.
@@ -180,7 +179,6 @@ class StageWindow:
     def frame(self):
         """The picture to show now, or None when nothing changed since the last one."""
         step, robots, status = self.snapshot()
-        self._drawn_step = step
         state = (step, self.camera, self.options, status)
         if state == self._drawn:
             return None
@@ -193,9 +191,10 @@ class StageWindow:
             self.root.quit()
             return
         now = time.monotonic()
-        stepped = self.steps() != self._drawn_step and now - self._frame_at >= FRAME_MIN_S
+        drawn_step = self._drawn[0] if self._drawn else None
+        stepped = self.steps() != drawn_step and now - self._frame_at >= FRAME_MIN_S
         drawn = False
-        if stepped or now - self._checked_at >= CHECK_MS / 1000.0:
+        if stepped or now - self._checked_at >= CHECK_S:
             self._checked_at = now
             image = self.frame()
             if image is not None:
