@@ -30,15 +30,15 @@ import tempfile
 import threading
 import time
 
+import multi_sync_bench  # bench/ is on sys.path: ./ws bench runs the files from there
 from course_common.ports import free_port
-from course_common.processes import ChildProcess, cpu_ticks, descendants, process_table
+from course_common.processes import ChildProcess, descendants, process_table
 from course_common.waiting import WaitError, wait_for
 from course_desktop.testing import Browser, LocalDesktop, colour_spot
 
 RUNS = 3
 WINDOW_S = 20.0
 LATENCY_SAMPLES = 20
-TICKS_S = os.sysconf('SC_CLK_TCK')
 DESKTOP_PARTS = ('desktop', 'Xvnc', 'openbox', 'xterm', 'bash')
 LESSON_VIEW = ('stageros', 'desktop', 'Xvnc', 'openbox', 'xterm')
 X_SAMPLE_S = 0.002
@@ -79,21 +79,12 @@ def named(pid_table, root, names):
     return found
 
 
-def cores_over(pids_by_name, window_s):
-    """{name: cores} over window_s of each group of pids (those that end count what they used)."""
-    def ticks():
-        return {name: sum(_ticks(p) for p in pids) for name, pids in pids_by_name.items()}
-    before, start = ticks(), time.monotonic()
+def cores_over(groups, window_s):
+    """{name: cores} over window_s of each group of pids, and 'total' (multi_sync_bench's
+    snapshots: a pid counts if it runs at both ends)."""
+    before = multi_sync_bench.cpu_snapshot(groups)
     time.sleep(window_s)
-    after, took = ticks(), time.monotonic() - start
-    return {name: (after[name] - before[name]) / TICKS_S / took for name in pids_by_name}
-
-
-def _ticks(pid):
-    try:
-        return cpu_ticks(pid)
-    except OSError:
-        return 0
+    return multi_sync_bench.cores(groups, before, multi_sync_bench.cpu_snapshot(groups))
 
 
 def pss_mb(pids):
@@ -132,7 +123,7 @@ def one_run(workspace, window_s, latency_samples):
         time.sleep(2.0)  # the first picture settles
         parts = named(process_table(), d.pid(), DESKTOP_PARTS)
         idle = cores_over(parts, window_s)
-        result['idle_cores'] = sum(idle.values())
+        result['idle_cores'] = idle['total']
         result['idle_mb'] = pss_mb([p for pids in parts.values() for p in pids])
 
         browser.type('roslaunch multi_sync multi_sync.launch\n')
@@ -157,7 +148,7 @@ def one_run(workspace, window_s, latency_samples):
         took = time.monotonic() - start
         result['pictures_per_s'] = (page_changes(browser) - n_before) / took
         result['kb_per_s'] = (bytes_sent(d.port) - bytes_before) / took / 1000.0
-        result['view_cores'] = sum(cores.values())
+        result['view_cores'] = cores.pop('total')
         result['stage_cores'] = cores['stageros']
         print('bench: cores by process: %s'
               % ', '.join('%s %.3f' % kv for kv in cores.items()), flush=True)
