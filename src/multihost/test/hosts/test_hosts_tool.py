@@ -7,6 +7,8 @@ import subprocess
 import sys
 import tempfile
 
+import course_common.processes
+import course_common.waiting
 import pytest
 from course_common.testing import spawn, wait_for
 
@@ -67,12 +69,12 @@ def test_not_root_says_so_in_one_line(hosts3):
     # and pytest's tmp_path is 0700 too): give it a world-readable copy of the tool's modules.
     tmp_path = pathlib.Path(tempfile.mkdtemp(prefix='hosts_not_root_'))
     atexit.register(shutil.rmtree, tmp_path, ignore_errors=True)
-    package = tmp_path / 'multihost'
-    package.mkdir(parents=True)
-    for module in (hosts, netns):
+    for module in (hosts, netns, course_common.processes, course_common.waiting):
+        package = tmp_path / module.__name__.split('.')[0]
+        package.mkdir(exist_ok=True)
         shutil.copy(module.__file__, package / os.path.basename(module.__file__))
-    (package / '__init__.py').write_text('')
-    for path in (tmp_path, package, *package.iterdir()):
+        (package / '__init__.py').touch()
+    for path in (tmp_path, *tmp_path.rglob('*')):
         path.chmod(0o755 if path.is_dir() else 0o644)
     result = _ws_hosts('up', '2', user=65534, pythonpath=str(tmp_path))
     assert result.returncode == 1
