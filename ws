@@ -247,10 +247,18 @@ cmd_multihost() {
   mkdir -p "$RESULTS_DIR"
   # Leftovers of a run that was killed outright (SIGKILL skips its clean-up).
   if [[ $(id -u) == 0 ]] && command -v ip >/dev/null; then rosrun multihost hosts down --stale || true; fi
-  local status=0 dirs
-  mapfile -t dirs < <(test_dirs hosts)
+  pytest_test_dirs hosts multihost "$@"
+}
+
+# pytest on every package's test/NAME folder, under a timeout, its results in
+# build/ws-results/LABEL.xml; skips reported with their reasons; "no test" is not a failure
+# here (the summary counts what ran).
+pytest_test_dirs() {
+  local name=$1 label=$2 status=0 dirs
+  shift 2
+  mapfile -t dirs < <(test_dirs "$name")
   timeout --kill-after=10 1200 /usr/bin/python3 -m pytest -q -p no:cacheprovider \
-    --junitxml="$RESULTS_DIR/multihost.xml" -rs "${dirs[@]}" "$@" || status=$?
+    --junitxml="$RESULTS_DIR/$label.xml" -rs "${dirs[@]}" "$@" || status=$?
   ((status == 0 || status == 5))
 }
 
@@ -261,11 +269,7 @@ cmd_browser() {
   local_ros_network
   export COURSE_WS_SETUP="$ROOT/$DEVEL_DIR/setup.bash"
   mkdir -p "$RESULTS_DIR"
-  local status=0 dirs
-  mapfile -t dirs < <(test_dirs browser)
-  timeout --kill-after=10 1200 /usr/bin/python3 -m pytest -q -p no:cacheprovider \
-    --junitxml="$RESULTS_DIR/browser.xml" -rs "${dirs[@]}" "$@" || status=$?
-  ((status == 0 || status == 5))
+  pytest_test_dirs browser browser "$@"
 }
 
 # src/.../<pkg>/test/<name>.test -> <pkg>
