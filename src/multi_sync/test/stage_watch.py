@@ -253,7 +253,8 @@ LINE_KINDS = (  # (letter, text with the robot's id) in the order the lesson pri
     ('W', 'Robot %d: waiting for team'),
     ('T', "Robot %d: Team is ready. Let's move!"),
 )
-FIRST_MOVE = 'Robot %d: first move command '  # the workspace's line after "Let's move!"
+# The workspace's line after "Let's move!": the delay from GO's arrival, in ms.
+FIRST_MOVE = r'Robot %d: first move command \d+\.\d ms after GO arrived$'
 
 
 def lesson_line_kinds(texts, i):
@@ -264,7 +265,7 @@ def lesson_line_kinds(texts, i):
     for text in texts:
         if text in kinds:
             letters.append(kinds[text])
-        elif text.startswith(FIRST_MOVE % i):
+        elif re.match(FIRST_MOVE % i, text):
             letters.append('F')
     return ''.join(letters)
 

@@ -8,7 +8,7 @@ from course_common.command_line import parse_argv_or_exit
 from course_common.param_loader import load_or_exit
 from course_common.publishers import LostSubscribers, OnNewSubscriber, unqueued_publisher
 from course_common.robot_ids import parse_robot_id
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 from geometry_msgs.msg import Twist
 
 from multi_sync.motion import TURTLESIM, Decision, TeamPositions, decide
@@ -19,9 +19,6 @@ from multi_sync.team import MONITOR_FRAME_ID
 
 # Deep enough for a 20-robot team's announcements and 10 Hz positions between two callbacks.
 SHARED_QUEUE = 100
-# A GO stamped this close to the wall clock was stamped on wall time, like this robot's log
-# line; on the Stage lesson the monitor runs on sim time, which starts at 0.
-WALL_STAMP_S = 3600.0
 
 
 class MoveRobotNode:
@@ -83,8 +80,7 @@ class MoveRobotNode:
         self._team = TeamPositions(robot_id)
         self._lock = threading.Lock()
         self._go = False
-        self._go_stamp = None
-        self._go_arrived_wall = None
+        self._go_arrived_s = None  # time.monotonic() when GO arrived
         self._moved = False
         self._reason = None
         self._drive_timer = None
@@ -104,7 +100,8 @@ class MoveRobotNode:
         # reset=True: on sim time a restarted stageros sends /clock back to its start, which
         # would end a plain rospy.Timer (ROSTimeMovedBackwardsException).
         self._announce_timer = rospy.Timer(rospy.Duration(config.announce_period_s),
-                                           self._on_announce_timer, reset=True)
+                                           quiet_at_shutdown(self._on_announce_timer),
+                                           reset=True)
         self._sensors.subscribe()
         rospy.Subscriber('team_positions', RobotPosition, self._on_position,
                          queue_size=SHARED_QUEUE)
@@ -181,15 +178,14 @@ class MoveRobotNode:
             if self._go or self._stopped:
                 return
             self._go = True
-            self._go_stamp = msg.header.stamp
-            self._go_arrived_wall = time.time()
+            self._go_arrived_s = time.monotonic()
             # Event-driven start: the first command leaves from this callback. Everything
             # else (log lines, sharing the position) waits for the first tick, so that a
             # whole team starting at once does not hold each other's first commands up.
             self._deferred.append("Robot %d: Team is ready. Let's move!" % self._id)
             self._deferred.extend(self._command_locked())
             self._drive_timer = rospy.Timer(rospy.Duration(1.0 / self._cfg.rate_hz),
-                                            self._on_tick, reset=True)
+                                            quiet_at_shutdown(self._on_tick), reset=True)
         self._announce_timer.shutdown()
 
     # --- driving ---------------------------------------------------------------------------
@@ -237,19 +233,13 @@ class MoveRobotNode:
         return logs
 
     def _first_move_line(self):
-        """How long after GO the first move command left, measured on the wall clock.
+        """How long after GO's arrival the first move command left, on this robot's clock.
 
-        From GO's stamp when the monitor stamped it on wall time (transport included);
-        otherwise (the Stage lesson's monitor runs on sim time, in 0.1 s steps) from the
-        moment GO arrived here.
+        From the arrival, not from GO's stamp: the monitor stamps GO on its own clock (sim
+        time on Stage, in 0.1 s steps; wall time on turtlesim, on another host perhaps).
         """
-        now = time.time()
-        stamp = self._go_stamp.to_sec()
-        if abs(now - stamp) < WALL_STAMP_S:
-            return 'Robot %d: first move command %.1f ms after GO' % (self._id,
-                                                                      (now - stamp) * 1e3)
-        return ('Robot %d: first move command %.1f ms after GO arrived (GO stamped %.1f s, '
-                'sim time)' % (self._id, (now - self._go_arrived_wall) * 1e3, stamp))
+        return 'Robot %d: first move command %.1f ms after GO arrived' % (
+            self._id, (time.monotonic() - self._go_arrived_s) * 1e3)
 
     def _share_locked(self):
         """Publish the robot's position for its teammates; return the nearest-teammate log."""
