@@ -36,7 +36,6 @@ class RvizOnXvfb:
         node_name = node_name or 'rviz_snapshot_%d' % os.getpid()
         with open(config_path) as f:
             self.topics = display_topics(f.read())
-        self.config_path = config_path
         self.node_name = '/' + node_name.lstrip('/')
         self._xvfb = Xvfb(SCREEN)
         self.display = self._xvfb.display
