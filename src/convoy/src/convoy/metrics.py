@@ -6,6 +6,8 @@ import math
 from bisect import bisect_right
 from dataclasses import dataclass
 
+from course_common.finite import check_finite, is_finite_number
+
 # A follower has "left the corner" once it is this far from where it spawned: before that its
 # gap to a leader spawned on the same spot is small without meaning anything.
 LEFT_START_M = 1.0
@@ -17,7 +19,7 @@ def _check_samples(name, samples):
     times = [s[0] for s in samples]
     if any(b < a for a, b in zip(times, times[1:], strict=False)):
         raise ValueError('%s: sample times must not decrease' % name)
-    if not all(math.isfinite(v) for s in samples for v in s):
+    if not all(is_finite_number(v) for s in samples for v in s):
         raise ValueError('%s: samples must be finite' % name)
 
 
@@ -65,8 +67,7 @@ def catch_up_time(gaps, follower, threshold_m, left_start_m=LEFT_START_M):
 def follower_stats(leader, follower, threshold_m, t_origin_s=None):
     """FollowerStats for one leader/follower pair; times relative to t_origin_s (default: the
     follower's first sample). Raises ValueError on empty or bad samples or a bad threshold."""
-    if not math.isfinite(threshold_m) or threshold_m <= 0.0:
-        raise ValueError('threshold_m must be finite and > 0, got %r' % (threshold_m,))
+    check_finite('threshold_m', threshold_m, low=0.0, low_open=True)
     gaps = gap_series(leader, follower)
     if not gaps:
         raise ValueError('no follower sample after the first leader sample')
@@ -91,7 +92,7 @@ def delays_since_newest(causes_s, effects_s):
     Raises ValueError if a list's times decrease or are not finite.
     """
     for name, times in (('causes', causes_s), ('effects', effects_s)):
-        if not all(math.isfinite(t) for t in times):
+        if not all(is_finite_number(t) for t in times):
             raise ValueError('%s: times must be finite' % name)
         if any(b < a for a, b in zip(times, times[1:], strict=False)):
             raise ValueError('%s: times must not decrease' % name)

@@ -9,6 +9,8 @@ times come in as arguments, seconds on a monotonic clock).
 """
 import math
 
+from course_common.finite import check_finite
+
 #: A loop this many periods behind (a loaded machine, a suspended process) restarts its
 #: schedule from now instead of running a burst of catch-up calls, as a Qt timer does.
 MAX_LAG_PERIODS = 4
@@ -26,9 +28,7 @@ class Deadlines:
     """
 
     def __init__(self, period_s, first_s, max_lag_periods=MAX_LAG_PERIODS):
-        if not (math.isfinite(period_s) and period_s >= 0.0):
-            raise ValueError('period must be a finite number of seconds >= 0, not %r'
-                             % (period_s,))
+        check_finite('period_s', period_s, low=0.0)
         if not max_lag_periods >= 0:
             raise ValueError('max_lag_periods must be >= 0, not %r' % (max_lag_periods,))
         self.period_s = period_s

@@ -31,7 +31,7 @@ class Trail:
 
         Non-finite positions are refused (ValueError): one would blank rviz's whole strip.
         """
-        if not (math.isfinite(x) and math.isfinite(y)):
+        if not (is_finite_number(x) and is_finite_number(y)):
             raise ValueError('trail point (%r, %r): expected finite numbers' % (x, y))
         if self._points:
             last_x, last_y = self._points[-1]

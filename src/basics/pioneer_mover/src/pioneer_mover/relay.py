@@ -3,7 +3,6 @@ pose as the lab's Pose2D (pure, no rospy).
 
 Units: m/s and rad/s for velocities, metres and radians for poses.
 """
-import math
 
 from course_common.finite import is_finite_number
 
@@ -28,7 +27,7 @@ def scale_twist(values, divisor=DEFAULT_DIVISOR):
     values = tuple(float(v) for v in values)
     if len(values) != 6:
         raise ValueError('expected 6 Twist components, got %d' % len(values))
-    if not all(math.isfinite(v) for v in values):
+    if not all(is_finite_number(v) for v in values):
         raise ValueError('command has a non-finite component: %r' % (values,))
     divisor = check_divisor(divisor)
     return tuple(v / divisor for v in values)
@@ -38,6 +37,6 @@ def pose2d_fields(x, y, theta):
     """(x, y, theta) for geometry_msgs/Pose2D from a turtlesim pose, as the lab's CoppeliaSim
     script publishes it (theta = rotation about z). ValueError if any is not finite."""
     fields = (float(x), float(y), float(theta))
-    if not all(math.isfinite(v) for v in fields):
+    if not all(is_finite_number(v) for v in fields):
         raise ValueError('pose has a non-finite field: x=%r, y=%r, theta=%r' % fields)
     return fields

@@ -3,8 +3,8 @@
 Mirrors turtlesim's mimic (tutorials/mimic.cpp); the node in mimic.py subscribes and publishes.
 """
 
-import math
 
+from course_common.finite import check_finite
 from course_common.graph_names import validate_graph_name
 
 from turtle_lite.namespaces import append, remap, resolve_mappings, turtle_namespace
@@ -40,8 +40,5 @@ def pose_to_command(linear_velocity, angular_velocity):
     forward-moving follower; that quirk is turtlesim's and is kept. Raises ValueError on a
     non-finite value (it would only poison the follower).
     """
-    for name, value in (("linear_velocity", linear_velocity),
-                        ("angular_velocity", angular_velocity)):
-        if not math.isfinite(value):
-            raise ValueError(f"{name} must be finite, got {value!r}")
-    return float(linear_velocity), float(angular_velocity)
+    return (check_finite("linear_velocity", linear_velocity),
+            check_finite("angular_velocity", angular_velocity))

@@ -9,6 +9,7 @@ import struct
 from dataclasses import dataclass
 from enum import Enum
 
+from course_common.finite import check_finite
 from course_common.planar import Pose
 
 # turtlesim's draw_square uses this truncated literal (#define PI 3.141592), not math.pi;
@@ -67,9 +68,7 @@ def _goal_turned(pose):
 
 def _check_pose(pose):
     for field in ("x", "y", "theta", "linear_velocity", "angular_velocity"):
-        value = getattr(pose, field)
-        if not math.isfinite(value):
-            raise ValueError(f"pose.{field} must be finite, got {value!r}")
+        check_finite("pose." + field, getattr(pose, field))
 
 
 class SquareDriver:

@@ -28,6 +28,7 @@ import time
 
 import rospy
 from course_common.arena import SPAWN_M
+from course_common.finite import is_finite_number
 from course_common.graph_names import graph_name_error
 from course_common.rospy_internals import add_preshutdown_hook, cheap_rosout, name_mappings
 from course_common.save_image import answer_save_image, save_logged
@@ -64,7 +65,7 @@ SHUTDOWN_REPLY_GRACE_S = 0.15
 def _bad_values(limit=math.inf, **values):
     """'name=value' for each value that is not finite or beyond +-limit ('' if none)."""
     return ', '.join('%s=%r' % (k, v) for k, v in values.items()
-                     if not math.isfinite(v) or abs(v) > limit)
+                     if not is_finite_number(v) or abs(v) > limit)
 
 
 class TurtleSimNode:

@@ -15,6 +15,7 @@ import numpy as np
 # The arena (canvas, scale, world size, turtle1's spawn point) is course_common.arena's: the
 # lessons use the same numbers without importing the simulator.
 from course_common.arena import CANVAS_PX, METER_PX, WORLD_SIZE_M
+from course_common.finite import check_finite, is_finite_number
 
 from .canvas import Canvas
 
@@ -66,9 +67,7 @@ def turtlesim_wrap_angle(theta):
 
 
 def _check_finite(label, value, limit=None):
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError('%s=%r is not a finite number' % (label, value))
+    value = check_finite(label, float(value))
     if limit is not None and abs(value) > limit:
         raise ValueError('%s=%r is beyond +-%g' % (label, value, limit))
     return value
@@ -84,7 +83,7 @@ def _finite_f32(label, value):
     value = _check_finite(label, value)
     with np.errstate(over='ignore'):
         rounded = float(np.float32(value))
-    if not math.isfinite(rounded):
+    if not is_finite_number(rounded):
         raise ValueError('%s=%r overflows a float32' % (label, value))
     return rounded
 
