@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import rospy
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import ParamError, check_name, check_number
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from turtlesim.msg import Pose
@@ -70,7 +70,8 @@ class ConvoyGaps:
         robots = sorted({r for link in config.links for r in link})
         self._subs = [rospy.Subscriber(r + '/pose', Pose, self._on_pose, callback_args=r,
                                        queue_size=1) for r in robots]
-        self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz), self._publish)
+        self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz),
+                                  quiet_at_shutdown(self._publish))
 
     def _on_pose(self, msg, robot):
         with self._lock:

@@ -8,6 +8,8 @@ import time
 
 import rospy
 
+from course_common.rospy_internals import shutdown_requested
+
 #: How often a failing call is logged at most, s (it may fail at every tick).
 ERROR_LOG_PERIOD_S = 1.0
 
@@ -46,12 +48,13 @@ class DeadlineLoop:
             self._thread.join(timeout=timeout_s)
 
     def _ending(self):
-        return self._stop.is_set() or rospy.is_shutdown()
+        # From the start of ROS's shutdown: it closes the topics before is_shutdown() is true.
+        return self._stop.is_set() or shutdown_requested()
 
     def run(self):
         """The loop itself (the thread's body; tests call it directly)."""
         deadlines = self._schedule()
-        while not self._stop.is_set() and not (self._stop_at_shutdown and rospy.is_shutdown()):
+        while not self._stop.is_set() and not (self._stop_at_shutdown and shutdown_requested()):
             delay = deadlines.delay(self._clock())
             if delay > 0.0:
                 # A plain sleep is cheaper than Event.wait; stop() is seen within a period.

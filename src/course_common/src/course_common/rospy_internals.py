@@ -120,6 +120,17 @@ def add_preshutdown_hook(hook):
     rospy.core.add_preshutdown_hook(hook)
 
 
+def shutdown_requested():
+    """True from the moment rospy starts shutting down (before ``rospy.is_shutdown()``).
+
+    Replaces ``rospy.is_shutdown()`` where a publisher must know that its topic may be closed:
+    is_shutdown() turns true only after rospy's pre-shutdown hooks, one of which closes every
+    topic, so a publish in that window raises "publish() to a closed topic". Nothing to
+    measure: rospy has no public call for that window.
+    """
+    return rospy.core.is_shutdown_requested()
+
+
 def name_mappings():
     """The node's command-line remappings (``from:=to``), unresolved, as a new dict.
 

@@ -1,7 +1,10 @@
-"""Node start-up shared by every node of the workspace: rospy.init_node and what it lacks."""
+"""Node start-up shared by every node of the workspace: rospy.init_node and what it lacks,
+and the loops and callbacks that publish until ROS shuts down under them."""
+import functools
+
 import rospy
 
-from course_common.rospy_internals import cache_rosout_param
+from course_common.rospy_internals import cache_rosout_param, shutdown_requested
 
 
 def init_node(name, **kwargs):
@@ -20,13 +23,36 @@ def init_node(name, **kwargs):
                       '/rosout_disable_topics_generation', err)
 
 
+def quiet_at_shutdown(callback):
+    """callback, made to return None quietly when ROS shuts down under it.
+
+    rospy closes every topic before rospy.is_shutdown() turns true: a publish in between (a
+    node of the same name took over, Ctrl-C, rosnode kill) raises "publish() to a closed
+    topic". A rospy.ROSException from callback while ROS is shutting down is that race, not
+    an error; at any other time it is raised as before. For loops' bodies, rospy.Timer
+    callbacks and threads that publish.
+    """
+    @functools.wraps(callback)
+    def guarded(*args, **kwargs):
+        try:
+            return callback(*args, **kwargs)
+        except rospy.ROSException:
+            if shutdown_requested():
+                return None
+            raise
+    return guarded
+
+
 def loop_at_rate(rate_hz, cycle):
     """Call cycle() at rate_hz until ROS shuts down: the slides' ``while (ros::ok())`` loop.
 
-    Ctrl-C during the sleep (rospy's ROSInterruptException) is a normal exit, not an error.
+    It ends quietly when ROS shuts down, wherever that lands: Ctrl-C during the sleep
+    (rospy's ROSInterruptException), or shutdown between the check and a publish in cycle
+    (quiet_at_shutdown).
     """
     rate = rospy.Rate(rate_hz)
-    while not rospy.is_shutdown():
+    cycle = quiet_at_shutdown(cycle)
+    while not shutdown_requested():
         cycle()
         try:
             rate.sleep()

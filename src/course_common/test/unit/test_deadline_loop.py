@@ -1,6 +1,5 @@
 """course_common.deadline_loop: the loop, on a fake clock and sleep."""
 import pytest
-import rospy
 from course_common.deadline_loop import DeadlineLoop
 from course_common.schedule import Deadlines
 
@@ -86,7 +85,7 @@ def test_a_call_failing_after_stop_ends_the_loop_without_a_log(monkeypatch):
 @pytest.mark.parametrize('stop_at_shutdown, calls_made', [(True, 0), (False, 1)])
 def test_ros_shutdown_ends_the_loop_only_when_asked(monkeypatch, stop_at_shutdown, calls_made):
     fake = FakeTime()
-    monkeypatch.setattr(rospy, 'is_shutdown', lambda: True)
+    monkeypatch.setattr(deadline_loop, 'shutdown_requested', lambda: True)
     calls = []
     DeadlineLoop(lambda: calls.append(1) or False,
                  lambda: Deadlines(0.1, fake.clock(), 4), 'test_loop', 'test call',

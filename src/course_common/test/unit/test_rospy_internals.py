@@ -63,6 +63,20 @@ def test_preshutdown_hook_gets_the_reason_before_shutdown():
         'calls its hook with the reason before is_shutdown() (got %r)' % out)
 
 
+def test_shutdown_is_requested_while_the_preshutdown_hooks_run():
+    pin(callable(getattr(rospy.core, 'is_shutdown_requested', None)),
+        'rospy.core.is_shutdown_requested', 'exists')
+    out = _run('import rospy\n'
+               'from course_common.rospy_internals import add_preshutdown_hook, '
+               'shutdown_requested\n'
+               'print(shutdown_requested())\n'
+               'add_preshutdown_hook(lambda r: print(shutdown_requested(), rospy.is_shutdown()))\n'
+               'rospy.signal_shutdown("pinned reason")\n'
+               'print(shutdown_requested())\n')
+    pin(out.split() == ['False', 'True', 'False', 'True'], 'rospy.core.is_shutdown_requested',
+        'is true from the pre-shutdown hooks on, before is_shutdown() (got %r)' % out)
+
+
 def test_name_mappings_are_the_command_line_remaps():
     pin(callable(getattr(rospy.names, 'get_mappings', None)), 'rospy.names.get_mappings',
         'exists')

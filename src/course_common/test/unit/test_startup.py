@@ -41,14 +41,18 @@ def master():
     m.stop()
 
 
-def run_probe(master, start):
+def probe_env(master):
     env = dict(os.environ, ROS_MASTER_URI=master.uri)
     # Everything runs on this machine: name it localhost unless the user chose a name, so a
     # hostname that does not resolve (a bare container) cannot keep the probe from its master.
     if not env.get('ROS_HOSTNAME') and not env.get('ROS_IP'):
         env['ROS_HOSTNAME'] = 'localhost'
+    return env
+
+
+def run_probe(master, start):
     done = subprocess.run([sys.executable, '-c', PROBE, start], capture_output=True, text=True,
-                          timeout=RUN_TIMEOUT_S, env=env, check=False)
+                          timeout=RUN_TIMEOUT_S, env=probe_env(master), check=False)
     assert done.returncode == 0, done.stderr
     assert done.stdout.count('line ') == LINES, done.stdout
     return master.calls(caller='/rosout_probe', method='subscribeParam')
@@ -82,3 +86,59 @@ def test_every_node_starts_with_course_common_startup():
              'course_common/startup.py']
     assert plain == [], ('these call rospy.init_node: use course_common.startup.init_node, '
                          'which asks the master once for /rosout_disable_topics_generation')
+
+
+# A loop that publishes, with ROS shutting down between its is_shutdown() check and its
+# publish, as when a node of the same name takes over: rospy's own pre-shutdown hook closes
+# every topic, then this probe's hook (added after it) holds the shutdown until the loop has
+# published to the closed topic. How the loop runs is argv[1]: loop_at_rate, or a rospy.Timer.
+RACE_DEADLINE_S = 20.0
+RACE_PROBE = '''
+import sys
+import threading
+import rospy
+from std_msgs.msg import String
+from course_common.rospy_internals import add_preshutdown_hook
+from course_common.startup import init_node, loop_at_rate, quiet_at_shutdown
+init_node('closed_topic_probe')
+pub = rospy.Publisher('chatter', String, queue_size=1)
+topics_closed, published, ended = threading.Event(), threading.Event(), threading.Event()
+def hold_shutdown(_reason):
+    topics_closed.set()
+    published.wait(%(deadline)s)
+add_preshutdown_hook(hold_shutdown)
+def cycle(*_event):
+    if ended.is_set():
+        return
+    if not topics_closed.is_set():
+        threading.Thread(target=rospy.signal_shutdown, args=('same name',)).start()
+        topics_closed.wait(%(deadline)s)
+    try:
+        pub.publish('hello')
+    finally:
+        published.set()
+    print('published to a closed topic', flush=True)
+if sys.argv[1] == 'loop_at_rate':
+    loop_at_rate(50, cycle)
+else:
+    def tick(event):
+        try:
+            quiet_at_shutdown(cycle)(event)
+        finally:
+            ended.set()
+    rospy.Timer(rospy.Duration(0.02), tick, oneshot=True)
+    ended.wait(%(deadline)s)
+print('ended' if published.is_set() else 'never published', flush=True)
+''' % {'deadline': RACE_DEADLINE_S}
+
+
+@pytest.mark.parametrize('loop', ['loop_at_rate', 'timer'])
+def test_a_loop_ends_quietly_when_shutdown_closes_its_topic(master, loop):
+    done = subprocess.run([sys.executable, '-c', RACE_PROBE, loop], capture_output=True,
+                          text=True, timeout=RUN_TIMEOUT_S, env=probe_env(master), check=False)
+    assert done.returncode == 0, done.stderr
+    # The publish did fail (the race happened), and nothing but rospy's own lines reached
+    # stderr: no traceback, no "closed topic".
+    assert done.stdout.split('\n')[-2:] == ['ended', ''], done.stdout + done.stderr
+    assert 'published to a closed topic' not in done.stdout, done.stdout
+    assert 'Traceback' not in done.stderr and 'closed topic' not in done.stderr, done.stderr

@@ -7,7 +7,7 @@ from course_common.command_line import parse_argv_or_exit
 from course_common.publishers import OnNewSubscriber, unqueued_publisher
 from course_common.robot_ids import parse_team_size
 from course_common.rospy_internals import caller_id, connection_ids
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 
 from multi_sync.go_latch import GoLatch
 from multi_sync.msg import RobotStatus
@@ -132,7 +132,7 @@ class MonitorNode:
         if outcome in (Outcome.NEW_READY, Outcome.TEAM_READY):
             rospy.loginfo('Robot %d is ready!', msg.robot_id)
         if outcome is Outcome.TEAM_READY:
-            threading.Thread(target=self._go_when_ready, name='go_when_ready',
+            threading.Thread(target=quiet_at_shutdown(self._go_when_ready), name='go_when_ready',
                              daemon=True).start()
         elif outcome is Outcome.AFTER_GO:
             rospy.loginfo_throttle_identical(

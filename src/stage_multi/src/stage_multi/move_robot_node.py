@@ -5,6 +5,7 @@ import rospy
 from course_common.command_line import parse_argv_or_exit
 from course_common.publishers import unqueued_publisher
 from course_common.robot_ids import parse_robot_id
+from course_common.rospy_internals import shutdown_requested
 from course_common.startup import init_node, loop_at_rate
 from geometry_msgs.msg import Twist
 
@@ -45,7 +46,7 @@ class MoveRobotNode:
         """The 10 Hz loop until shutdown. On sim time, a restarted stageros sends /clock back
         to 0.1 s and rospy's Rate gives up (ROSTimeMovedBackwardsException): the loop starts
         again, as the lesson's ros::Rate carries on."""
-        while not rospy.is_shutdown():
+        while not shutdown_requested():
             loop_at_rate(RATE_HZ, self.cycle)
 
     def stop(self):

@@ -5,7 +5,7 @@ import threading
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.planar import Pose
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 from geometry_msgs.msg import Pose2D, Twist
 
 from closed_loop_turtle.go_to_goal import GoalError, Phase, check_goal, check_pose, step
@@ -57,7 +57,8 @@ class MoveTurtleToGoalNode:
         self._cmd_pub = rospy.Publisher('/pioneer/cmd_vel', Twist, queue_size=QUEUE_SIZE)
         self._reached_pub = rospy.Publisher('/pioneer/goal_reached', Pose2D, queue_size=1,
                                             latch=True)
-        self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz), self._on_tick)
+        self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz),
+                                  quiet_at_shutdown(self._on_tick))
         # Subscribe last: the callbacks use the lock and the state above.
         self._pose_sub = rospy.Subscriber('/pioneer/pose', Pose2D, self._on_pose, queue_size=1)
         self._goal_sub = rospy.Subscriber('/pioneer/goal', Pose2D, self._on_goal,

@@ -3,7 +3,7 @@ import contextlib
 
 import rospy
 from course_common.command_line import parse_argv_or_exit
-from course_common.startup import init_node
+from course_common.startup import init_node, loop_at_rate
 from geometry_msgs.msg import Twist
 from turtlesim.msg import Pose
 
@@ -41,12 +41,8 @@ class MoveTurtleNode:
         """Publishes the forward command at 10 Hz until shutdown."""
         forward = Twist()
         forward.linear.x = FORWARD_SPEED_MPS
-        rate = rospy.Rate(RATE_HZ)
         rospy.loginfo('Starting to move forward')
-        with contextlib.suppress(rospy.ROSInterruptException):
-            while not rospy.is_shutdown():
-                self._pub.publish(forward)
-                rate.sleep()
+        loop_at_rate(RATE_HZ, lambda: self._pub.publish(forward))
 
     def stop(self):
         """Sends one zero Twist (rospy.on_shutdown); the publisher may already be closed."""

@@ -7,7 +7,7 @@ SquareDriver of square_driver.
 import threading
 
 import rospy
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
 from turtlesim.msg import Pose
@@ -50,7 +50,7 @@ class DrawSquareNode:
 
     def start(self):
         """Start the tick timer and the pose subscription (subscribe last)."""
-        self._timer = rospy.Timer(rospy.Duration(TICK_S), self._on_tick)
+        self._timer = rospy.Timer(rospy.Duration(TICK_S), quiet_at_shutdown(self._on_tick))
         self._sub = rospy.Subscriber("turtle1/pose", Pose, self._on_pose, queue_size=1)
 
     def stop(self):

@@ -8,7 +8,7 @@ from course_common.arena import arena_outline
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_int, check_number
 from course_common.rviz.colours import ARENA_RGB, robot_color
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 from course_common.trail import Trail
 from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
@@ -87,7 +87,8 @@ class LessonMarkers:
         self._pub = rospy.Publisher('lesson_markers', MarkerArray, queue_size=1)
         self._arena = self._arena_marker()
         self._watch = PoseWatch(config.watch, (), self._on_pose, self._on_gone)
-        self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz), self._publish)
+        self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz),
+                                  quiet_at_shutdown(self._publish))
 
     def _arena_marker(self):
         m = _marker('arena', 0, self._config.watch.parent_frame, Marker.LINE_STRIP)

@@ -7,7 +7,7 @@ import rospy
 import tf2_ros
 from course_common.param_loader import get_private, load_or_exit
 from course_common.params import check_name_list, check_number
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 from geometry_msgs.msg import TransformStamped
 
 from turtle_lite.pose_watch import PoseWatch, WatchParams, load_watch_params
@@ -73,7 +73,8 @@ class PoseToTf:
         self._pending = {}  # frame -> TransformStamped not yet sent (batched mode)
         self._timer = None
         if config.rate_hz > 0:
-            self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz), self._flush)
+            self._timer = rospy.Timer(rospy.Duration(1.0 / config.rate_hz),
+                                      quiet_at_shutdown(self._flush))
         self._watch = PoseWatch(config.watch, config.turtles, self._on_pose, self._on_gone)
 
     def _on_pose(self, frame, msg, stamp):

@@ -10,7 +10,7 @@ import sys
 
 import rospy
 from course_common.param_loader import load_or_exit
-from course_common.startup import init_node
+from course_common.startup import init_node, quiet_at_shutdown
 from geometry_msgs.msg import Twist
 
 from turtle_lite.teleop_keys import (
@@ -60,6 +60,8 @@ class TeleopNode:
             for line in BANNER:  # after the mode switch, as turtlesim: no key gets echoed
                 print(line)
             sys.stdout.flush()
+            # A key pressed as ROS shuts down ends the loop quietly (None: not go on).
+            handle_key = quiet_at_shutdown(self.handle_key)
             while not rospy.is_shutdown():
                 ready, _, _ = select.select([fd], [], [], SHUTDOWN_POLL_S)
                 if not ready:
@@ -73,7 +75,7 @@ class TeleopNode:
                 if not data:
                     rospy.logerr("turtle_teleop_key: cannot read stdin (%s), quitting", reason)
                     return 1
-                if not self.handle_key(data[0]):
+                if not handle_key(data[0]):
                     return 0
         return 0
 
