@@ -23,8 +23,9 @@ usage() {
 usage: ./ws COMMAND [ARGS]
   demo [ARGS]        deps, build, then the demos: the convoy with its autopilot leader (ARGS go
                      to it), then the synchronisation lesson on Stage (build/demo/stage/)
-  test               deps, build, lint, unit tests, then the integration and multi-host tests
-                     side by side (WS_TEST_JOBS at a time, 2), one summary line
+  test               deps, build, lint, then the unit, integration, multi-host and browser
+                     tests side by side (WS_TEST_JOBS at a time, 2; longest first, by their
+                     last run's times in build/test-durations), one summary line
   deps               install the missing Debian packages of tools/debian-packages.txt
   build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
                      runs every unit test and rostest the catkin way, see src/course_pytest)
@@ -154,6 +155,7 @@ cmd_unit() {
 cmd_integration() {
   local files=("$@")
   ((${#files[@]})) || mapfile -t files < <(integration_files)
+  mapfile -t files < <(longest_first "${files[@]}")
   run_test_jobs "${files[@]}"
 }
 
@@ -176,30 +178,60 @@ run_rostest_file() {
   fi
 }
 
-# A job of the test steps that run side by side: a .test file, or `multihost` (the multi-host
-# tests, their output in build/ws-results/multihost.log).
+# A job of the test steps that run side by side: a .test file, or one of the pytest steps
+# `unit`, `multihost`, `browser` (its output in build/ws-results/NAME.log).
 run_test_job() {
   case $1 in
-    multihost) cmd_multihost >"$RESULTS_DIR/multihost.log" 2>&1 ;;
-    browser) cmd_browser >"$RESULTS_DIR/browser.log" 2>&1 ;;
+    unit | multihost | browser) "cmd_$1" >"$RESULTS_DIR/$1.log" 2>&1 ;;
     *) run_rostest_file "$1" ;;
   esac
 }
 
 test_job_log() {
   case $1 in
-    multihost) echo "$RESULTS_DIR/multihost.log" ;;
-    browser) echo "$RESULTS_DIR/browser.log" ;;
+    unit | multihost | browser) echo "$RESULTS_DIR/$1.log" ;;
     *) echo "$(integration_results_dir "$1")/rostest.log" ;;
   esac
 }
 
 test_job_label() {
   case $1 in
-    multihost) echo "multihost:" ;;
-    browser) echo "browser:" ;;
+    unit | multihost | browser) echo "$1:" ;;
     *) echo "integration: $(package_of "$1")/$(basename "$1" .test)" ;;
   esac
+}
+
+# How long each job took at its last run (seconds, job), kept in the build directory.
+TEST_DURATIONS="$ROOT/$BUILD_DIR/test-durations"
+
+# The jobs, longest first (so that no long job starts last and runs alone at the end): by the
+# time each took at its last run; one never run here by its rostest time-limits (a fresh
+# clone: rough, but long files have long limits), the pytest steps first of all.
+longest_first() {
+  local -A took=()
+  local seconds job
+  if [[ -f $TEST_DURATIONS ]]; then
+    while read -r seconds job; do took[$job]=$seconds; done <"$TEST_DURATIONS"
+  fi
+  for job in "$@"; do
+    if [[ -n ${took[$job]:-} ]]; then
+      seconds=${took[$job]}
+    else
+      case $job in
+        unit | multihost | browser) seconds=1000 ;;
+        *) seconds=$(grep -o 'time-limit="[0-9.]*"' "$job" | awk -F'"' '{s += $2} END {printf "%d", s / 5}') ;;
+      esac
+    fi
+    printf '%s\t%s\n' "$seconds" "$job"
+  done | sort -s -t$'\t' -k1,1nr | cut -f2
+}
+
+# Records how long job took at this run (seconds), replacing its last time.
+record_duration() {
+  local job=$1 seconds=$2 tmp="$TEST_DURATIONS.new"
+  { [[ ! -f $TEST_DURATIONS ]] || awk -v job="$job" '$2 != job' "$TEST_DURATIONS"
+    echo "$seconds $job"; } >"$tmp"
+  mv "$tmp" "$TEST_DURATIONS"
 }
 
 # Runs the jobs TEST_JOBS at a time, in the order given, each in the background with its output
@@ -218,7 +250,11 @@ run_test_jobs() {
   local job pid failed=0
   for job in "$@"; do
     while ((${#running[@]} >= TEST_JOBS)); do end_test_job || failed=1; done
-    run_test_job "$job" &
+    # bash starts a background job with SIGINT and SIGQUIT ignored, and every process the
+    # test starts would inherit that: a test's Ctrl-C (ChildProcess.stop, roslaunch's own
+    # SIGINT to its nodes) would then wait out its timeout on any program that does not set
+    # its own handler (sleep, rosbag, a shell). The job's subshell takes the defaults back.
+    (trap - INT QUIT; run_test_job "$job") &
     running[$!]=$job started[$!]=$SECONDS
   done
   while ((${#running[@]})); do end_test_job || failed=1; done
@@ -231,6 +267,7 @@ end_test_job() {
   wait -n -p pid "${!running[@]}" || status=$?
   local job=${running[$pid]} took=$((SECONDS - started[$pid]))
   unset "running[$pid]" "started[$pid]"
+  record_duration "$job" "$took"
   if ((status == 0)); then
     echo "$(test_job_label "$job") ok (${took} s)"
     return 0
@@ -288,11 +325,11 @@ cmd_test() {
   rm -rf "$RESULTS_DIR"
   local lint_ok=1
   cmd_lint || lint_ok=0
-  cmd_unit || true
-  # The multi-host and browser tests first: the longest jobs, run beside the .test files.
-  local files
+  # The unit tests, the multi-host and browser tests and the .test files side by side.
+  local files jobs
   mapfile -t files < <(integration_files)
-  run_test_jobs multihost browser "${files[@]}" || true
+  mapfile -t jobs < <(longest_first unit multihost browser "${files[@]}")
+  run_test_jobs "${jobs[@]}" || true
   local expected=(--junit "$RESULTS_DIR/unit.xml" --junit "$RESULTS_DIR/multihost.xml"
     --junit "$RESULTS_DIR/browser.xml") f
   for f in "${files[@]}"; do
