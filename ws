@@ -29,7 +29,7 @@ usage: ./ws COMMAND [ARGS]
   deps               install the missing Debian packages of tools/debian-packages.txt
   build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
                      runs every unit test and rostest the catkin way, see src/course_pytest)
-  lint               catkin_lint, unit tests registered with catkin, ruff, hadolint, actionlint
+  lint               catkin_lint, tests registered with catkin, ruff, hadolint, actionlint
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
   integration [F..]  rostest every test/*.test of every package (or just the files F),
                      WS_TEST_JOBS at a time
@@ -105,13 +105,19 @@ lint_venv() {
   fi
 }
 
-# Every package's test/unit runs under `catkin_make run_tests` too (src/course_pytest).
-check_unit_registered() {
-  local d failed=0
-  for d in $(test_dirs unit); do
-    grep -q '^ *course_add_pytests(test/unit)' "${d%/test/unit}/CMakeLists.txt" || {
-      echo "${d%/test/unit}/CMakeLists.txt: add course_add_pytests(test/unit) to its testing" \
-        "block (catkin_make run_tests would not run $d)" >&2
+# Every package's tests run under `catkin_make run_tests` too: a package with launch files,
+# .test files or unit tests calls course_add_tests() in its testing block (src/course_pytest).
+check_tests_registered() {
+  local d failed=0 what=()
+  for d in $(package_dirs); do
+    what=()
+    [[ ! -d $d/launch ]] || what+=("$d/launch")
+    ! compgen -G "$d/test/*.test" >/dev/null || what+=("$d/test/*.test")
+    [[ ! -d $d/test/unit ]] || what+=("$d/test/unit")
+    ((${#what[@]})) || continue
+    grep -q '^ *course_add_tests()' "$d/CMakeLists.txt" || {
+      echo "$d/CMakeLists.txt: add course_add_tests() to its testing block" \
+        "(catkin_make run_tests would not run ${what[*]})" >&2
       failed=1
     }
   done
@@ -123,7 +129,7 @@ cmd_lint() {
   source_devel
   local failed=0
   echo "lint: catkin_lint"; catkin_lint --strict -W2 --quiet src || failed=1
-  echo "lint: unit tests registered"; check_unit_registered || failed=1
+  echo "lint: tests registered"; check_tests_registered || failed=1
   echo "lint: ruff"; "$LINT_VENV/bin/ruff" check --quiet . || failed=1
   echo "lint: hadolint"; "$LINT_VENV/bin/hadolint" docker/Dockerfile || failed=1
   echo "lint: actionlint"; "$LINT_VENV/bin/actionlint" .github/workflows/*.yml || failed=1

@@ -19,7 +19,7 @@ from course_common.private_launch import PrivateMasterLaunch
 from course_common.rviz.snapshot import snapshot
 from course_common.startup import init_node
 from course_common.waiting import WaitError, wait_for
-from turtle_lite.srv import SaveImage
+from course_msgs.srv import SaveImage
 
 from convoy.bag_report import BagError, summarise_bag, write_figures
 from convoy.harness import POLL_S, HarnessError, launch_for

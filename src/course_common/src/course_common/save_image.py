@@ -1,7 +1,7 @@
 """The ~save_image services' handler (turtlesim's canvas, stageros's world): write a PNG.
 
-turtle_lite/SaveImage and stage_lite/SaveImage are the same definition (string path in, the
-absolute path written out); each package keeps its own type, and both answer through here.
+Both simulators answer course_msgs/SaveImage (string path in, the absolute path written out)
+through here.
 write_png is the one PNG writer of both simulators' pictures.
 """
 import os

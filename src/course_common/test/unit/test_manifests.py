@@ -1,11 +1,13 @@
 """The workspace's package graph, read from every package.xml and every Python file (no rospy).
 
-- course_common is a leaf: it depends on no package of the workspace (course_pytest, CMake
-  only, aside), so every package can depend on it.
+- The neutral packages are leaves: course_common (shared code) and course_msgs (the types more
+  than one package speaks) depend on no package of the workspace (course_pytest, CMake only,
+  aside), so every package can depend on them.
 - No dependency cycle but the interface/implementation pairs (turtlesim and turtle_lite,
   stage_ros and stage_lite), and each side of a pair says why in a comment above the line.
-- No lesson imports a simulator's Python modules: lessons use the interface (its executables,
-  messages and services) and course_common; message and service types are the interface's.
+- No lesson imports a simulator's Python, its generated types included: lessons use the
+  interface (its executables, messages and services), course_msgs for the simulators' shared
+  extensions (SaveImage), and course_common.
 """
 import ast
 import glob
@@ -19,7 +21,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SRC = os.path.normpath(os.path.join(HERE, '..', '..', '..'))  # the workspace's src/
 PAIRS = ({'turtlesim', 'turtle_lite'}, {'stage_ros', 'stage_lite'})
 SIMULATORS = {'turtle_lite', 'stage_lite'}
-NEUTRAL = {'course_common', 'course_pytest'}
+NEUTRAL = {'course_common', 'course_msgs', 'course_pytest'}
 CMAKE_ONLY = {'course_pytest'}
 
 
@@ -55,12 +57,13 @@ def cycles():
 
 
 def test_the_workspace_is_found():
-    assert {'course_common', 'turtlesim', 'turtle_lite', 'stage_ros', 'stage_lite',
-            'multi_sync', 'convoy'} <= set(MANIFESTS)
+    assert {'course_common', 'course_msgs', 'turtlesim', 'turtle_lite', 'stage_ros',
+            'stage_lite', 'multi_sync', 'convoy'} <= set(MANIFESTS)
 
 
-def test_course_common_depends_on_no_workspace_package():
-    assert workspace_deps('course_common') <= CMAKE_ONLY
+def test_neutral_packages_depend_on_no_workspace_package():
+    assert {name: workspace_deps(name) - CMAKE_ONLY for name in NEUTRAL} == \
+        {name: set() for name in NEUTRAL}
 
 
 def test_the_only_cycles_are_interface_and_implementation():
@@ -104,7 +107,6 @@ def test_no_lesson_imports_a_simulators_python():
     found = []
     for package, path in lesson_python_files():
         for module in imported_modules(path):
-            top, _, rest = module.partition('.')
-            if top in SIMULATORS and rest.split('.')[0] not in ('msg', 'srv'):
+            if module.partition('.')[0] in SIMULATORS:
                 found.append('%s: %s imports %s' % (package, os.path.relpath(path, SRC), module))
     assert found == []

@@ -19,9 +19,9 @@ from course_common.private_launch import POLL_S, PrivateMasterLaunch
 from course_common.processes import rospy_texts
 from course_common.startup import init_node
 from course_common.waiting import WaitError, wait_for
+from course_msgs.srv import SaveImage
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from stage_lite.srv import SaveImage
 
 from multi_sync.lesson_report import Track, monitor_lines, stop_reasons, summary_lines
 

@@ -7,10 +7,10 @@ import numpy as np
 import rospy
 import rostest
 from course_common.testing.recorders import stamp_ns
+from course_msgs.srv import SaveImage
 from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import OccupancyGrid, Odometry
 from PIL import Image
-from stage_lite.srv import SaveImage
 from stage_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""The install space holds turtlesim and turtle_lite, and sourcing it alone is enough to run
-`rosrun turtlesim turtlesim_node` (no source tree, no devel space on the paths).
+"""The install space holds turtlesim, turtle_lite and course_msgs (the ~save_image type), and
+sourcing it alone is enough to run `rosrun turtlesim turtlesim_node` (no source tree, no devel
+space on the paths).
 
 The workspace's build directory comes from WS_BUILD_PATH (set by `./ws integration`). The
 install goes under a temporary DESTDIR, so the workspace's own install/ is left alone.
@@ -64,12 +65,12 @@ class InstallSpaceTest(unittest.TestCase):
         self.assertEqual(done.returncode, 0, done.stderr)
         return done.stdout.strip()
 
-    def test_both_packages_are_installed(self):
-        for package in ("turtlesim", "turtle_lite"):
+    def test_the_packages_are_installed(self):
+        for package in ("turtlesim", "turtle_lite", "course_msgs"):
             self.assertEqual(self.run_installed(f"rospack find {package}"),
                              f"{self.install}/share/{package}")
         self.assertIn("string name", self.run_installed("rossrv show turtlesim/Spawn"))
-        self.assertIn("string path", self.run_installed("rossrv show turtle_lite/SaveImage"))
+        self.assertIn("string path", self.run_installed("rossrv show course_msgs/SaveImage"))
 
     def test_rosrun_turtlesim_node_from_the_install_space(self):
         sim = spawn(self.in_install("exec rosrun turtlesim turtlesim_node __name:=installed_sim "

@@ -11,10 +11,10 @@ import rospy
 import rostest
 from course_common.testing import wait_for
 from course_common.testing.master import graph_names, names_under
+from course_msgs.srv import SaveImage
 from PIL import Image
 from rosgraph_msgs.msg import Log
 from sim_support import DEFAULT_BG, DEFAULT_PEN, SimTestCase, has_turtle_at, wait_connected
-from turtle_lite.srv import SaveImage
 from turtle_lite.testing import CENTER, POSE_TOL, WORLD, PoseRecorder
 from turtlesim.srv import Kill, SetPen, Spawn, TeleportAbsolute
 

@@ -6,7 +6,7 @@ Node services (node namespace, like turtlesim):
   clear (std_srvs/Empty), reset (std_srvs/Empty), spawn (turtlesim/Spawn),
   kill (turtlesim/Kill)
 Private services (turtle_lite extension):
-  ~save_image (turtle_lite/SaveImage): write the canvas with the turtles as a PNG
+  ~save_image (course_msgs/SaveImage): write the canvas with the turtles as a PNG
 Per turtle, in the turtle's namespace (``turtle1/...``; namespace remaps such as
 ``/turtle1:=/robot1`` move all six, as in roscpp):
   Subscribes  cmd_vel (geometry_msgs/Twist, queue 1)
@@ -34,6 +34,7 @@ from course_common.rospy_internals import add_preshutdown_hook, cheap_rosout, na
 from course_common.save_image import answer_save_image, save_logged
 from course_common.schedule import BAD_INPUT_WARN_PERIOD_S
 from course_common.startup import init_node
+from course_msgs.srv import SaveImage, SaveImageResponse
 from std_srvs.srv import Empty, EmptyResponse
 from turtlesim.srv import (
     Kill,
@@ -44,8 +45,6 @@ from turtlesim.srv import (
     TeleportAbsoluteResponse,
     TeleportRelativeResponse,
 )
-
-from turtle_lite.srv import SaveImage, SaveImageResponse
 
 from . import namespaces
 from .naming import NameCounter

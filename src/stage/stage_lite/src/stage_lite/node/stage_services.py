@@ -1,12 +1,11 @@
 """stageros's services and latched extras: reset_positions, ~save_image and /map."""
 import rospy
 from course_common.save_image import answer_save_image, write_png
+from course_msgs.srv import SaveImage, SaveImageResponse
 from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import OccupancyGrid
 from std_srvs.srv import Empty, EmptyResponse
 from tf2_msgs.msg import TFMessage
-
-from stage_lite.srv import SaveImage, SaveImageResponse
 
 from . import map_msg
 
