@@ -1,6 +1,6 @@
-"""stage_lite.node.status: Stage's clock string and the measured real-time factor."""
+"""stage_lite.view.status: Stage's clock string and the measured real-time factor."""
 import pytest
-from stage_lite.node.status import RateMeter, clock_string
+from stage_lite.view.status import RateMeter, clock_string
 
 
 @pytest.mark.parametrize('sim_ns, factor, paused, text', [
