@@ -301,11 +301,11 @@ class Model:
         self.stack_children = bool(wf.read_int(e, 'stack_children', 1))
         self.obstacle_return = bool(wf.read_int(e, 'obstacle_return', 1))
         self.ranger_return = wf.read_float(e, 'ranger_return', self.ranger_return)
-        p = wf.prop(e, 'ctrl')
-        if p is not None:
-            self.ctrl = [wf._value(p, k) for k in range(len(p.values))]
-            wf.warn(p, 'ctrl %s: controller plugins are not run here; the model is loaded and'
-                    ' nothing drives it' % ' '.join(self.ctrl))
+        ctrl = wf.read_values(e, 'ctrl')
+        if ctrl is not None:
+            self.ctrl = ctrl
+            wf.warn(wf.prop(e, 'ctrl'), 'ctrl %s: controller plugins are not run here; the model'
+                    ' is loaded and nothing drives it' % ' '.join(self.ctrl))
         interval_ms = wf.read_int(e, 'update_interval', self.interval_us // 1000)
         self.interval_us = 1000 * interval_ms
         if self.interval_us <= 0:

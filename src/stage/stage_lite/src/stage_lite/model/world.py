@@ -186,8 +186,8 @@ class World:
     def _read_window(wf, e):
         """The GUI's window( ) properties, read as numbers or strings."""
         out = {}
-        for name, p in wf.entities[e].props.items():
-            vals = [wf._value(p, k) for k in range(len(p.values))]
+        for name in wf.entities[e].props:
+            vals = wf.read_values(e, name)
             nums = []
             for v in vals:
                 try:
