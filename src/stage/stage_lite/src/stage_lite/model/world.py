@@ -23,8 +23,8 @@ import os
 import numpy as np
 
 from . import floor, grid, world_load
-from .models import Ranger
 from .pose import pose_add, stage_normalize
+from .ranger import Ranger
 from .robot import body_row
 from .worldfile import WorldError
 

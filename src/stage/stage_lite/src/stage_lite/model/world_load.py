@@ -17,7 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import grid
-from .models import BUILTIN_TYPES, SIMULATED_TYPES, Position, Ranger, calc_size, new_model
+from .bodies import calc_size
+from .models import Blinkenlight, Blobfinder, Camera, Fiducial, Model
+from .position import Position
+from .ranger import Ranger
 from .robot import RangerView, Robot, body_row
 from .space import DynamicBlock, Space
 from .worldfile import WorldError, Worldfile
@@ -25,6 +28,13 @@ from .worldfile import WorldError, Worldfile
 #: Top-level properties Stage reads (the GUI ones too: the window is optional here).
 TOP_LEVEL = ('name', 'show_clock', 'show_clock_interval', 'threads', 'paused',
              'confirm_on_quit', 'log')
+#: Stage's model typetable: every type a world may name, and the class each one loads as
+#: (the others are plain models); the types simulated here (the others: their bodies only).
+BUILTIN_TYPES = ('model', 'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'camera',
+                 'fiducial', 'gripper', 'lightindicator', 'position', 'ranger')
+CLASSES = {'position': Position, 'ranger': Ranger, 'fiducial': Fiducial,
+           'blobfinder': Blobfinder, 'camera': Camera, 'blinkenlight': Blinkenlight}
+SIMULATED_TYPES = ('model', 'position', 'ranger')
 
 
 @dataclass
@@ -91,7 +101,8 @@ def _load_models(wf, path, rng):
         elif ent.kind in BUILTIN_TYPES:
             if ent.parent != 0 and parent is None:
                 raise WorldError(ent.path, ent.line, 'a %s inside a window( )' % ent.kind)
-            m = new_model(world_dir, parent, ent.kind, len(models), ent.index, counts)
+            m = CLASSES.get(ent.kind, Model)(world_dir, parent, ent.kind, len(models),
+                                             ent.index, counts)
             m.load(wf, rng)
             if ent.kind not in SIMULATED_TYPES:
                 wf.warnings.append('%s:%d: %s models are not simulated here; loaded as a'
