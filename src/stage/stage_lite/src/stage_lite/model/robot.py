@@ -33,10 +33,6 @@ class RangerView:
         return -self.fov_rad / 2.0
 
     @property
-    def angle_max(self):
-        return self.fov_rad / 2.0
-
-    @property
     def angle_increment(self):
         # stageros divides by samples - 1 even when it is 0 (IEEE: inf, or nan for fov 0)
         if self.samples > 1:
@@ -61,7 +57,6 @@ class Robot:
         self.origin = model.geom_pose
         self.rangers = rangers
         self.drive = model.drive
-        self.localization = model.localization
         gp = model.global_pose()
         self.initial_global = gp
         self.start_pose = (gp[0], gp[1], gp[3])

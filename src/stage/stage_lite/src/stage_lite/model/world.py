@@ -58,10 +58,6 @@ class World:
         self.updates = 0
         self._prepare_rays()
 
-    @property
-    def sim_time_s(self):
-        return self.sim_time_us / 1e6
-
     def _prepare_rays(self):
         """Every ranger of every robot, in order, and their tables for a step's cast."""
         views = [(r, v) for r in self.robots for v in r.rangers]
