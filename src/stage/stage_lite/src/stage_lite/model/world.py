@@ -81,10 +81,9 @@ class World:
     def set_command(self, i, vx, vy, wz):
         """stageros's cmdvelReceived: SetSpeed(x, y, a), applied at the robot's next update.
         Raises ValueError on NaN or infinity (the node refuses those with a WARN)."""
-        for name, v in (('linear.x', vx), ('linear.y', vy), ('angular.z', wz)):
-            if not math.isfinite(v):
-                raise ValueError('%s must be finite, got %r' % (name, v))
-        self.robots[i].goal = (float(vx), float(vy), 0.0, float(wz))
+        vx, vy, wz = (finite_float(name, v)
+                      for name, v in (('linear.x', vx), ('linear.y', vy), ('angular.z', wz)))
+        self.robots[i].goal = (vx, vy, 0.0, wz)
 
     def stop_all(self):
         """stageros's watchdog: SetSpeed(0, 0, 0) on every robot."""
@@ -253,6 +252,18 @@ class World:
             self._occupancy = floor.filled(self._statics, self._static_cells,
                                            [r.start_pose[:2] for r in self.robots], self.ppm)
         return self._occupancy
+
+
+def finite_float(name, value):
+    """value as a float; ValueError ('NAME must be finite, got VALUE') for NaN or infinity.
+
+    The model's one finite check: the model depends on no package of the workspace (numpy,
+    numba and Pillow only), so that Stage's rules stand alone and run from this source
+    folder (the model-only bench's children import nothing else); the node and the view
+    check through course_common.finite."""
+    if not math.isfinite(value):
+        raise ValueError('%s must be finite, got %r' % (name, value))
+    return float(value)
 
 
 def load_world(path, seed=None):
