@@ -58,25 +58,6 @@ class World:
         self.updates = 0
         self._prepare_rays()
 
-    def _prepare_rays(self):
-        """Every ranger of every robot, in order, and their tables for a step's cast."""
-        views = [(r, v) for r in self.robots for v in r.rangers]
-        self._views = views
-        self._rays = self._ray_tables(range(len(views)))
-
-    def _ray_tables(self, due):
-        """The per-sensor tables of the rangers `due` (indices into _views) for Space.cast."""
-        views = [self._views[k][1] for k in due]
-        counts = np.array([v.samples for v in views], np.int64)
-        return dict(
-            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
-            sensor=np.repeat(np.arange(len(views), dtype=np.int64), counts),
-            incr=np.array([Ranger.sample_increment(v.sensor) for v in views], np.float64),
-            rmax=np.array([v.range_max for v in views], np.float64),
-            ray_class=np.array([self._ray_zs.index(v.beam_z) for v in views], np.int64),
-            root=np.array([v.model.root.index for v in views], np.int64),
-            origins=np.empty((len(views), 4), np.float64))
-
     # ---- the interface -------------------------------------------------------------------
     def set_command(self, i, vx, vy, wz):
         """stageros's cmdvelReceived: SetSpeed(x, y, a), applied at the robot's next update.
@@ -180,6 +161,25 @@ class World:
                         np.int64)
 
     # ---- rays --------------------------------------------------------------------------
+    def _prepare_rays(self):
+        """Every ranger of every robot, in order, and their tables for a step's cast."""
+        views = [(r, v) for r in self.robots for v in r.rangers]
+        self._views = views
+        self._rays = self._ray_tables(range(len(views)))
+
+    def _ray_tables(self, due):
+        """The per-sensor tables of the rangers `due` (indices into _views) for Space.cast."""
+        views = [self._views[k][1] for k in due]
+        counts = np.array([v.samples for v in views], np.int64)
+        return dict(
+            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
+            sensor=np.repeat(np.arange(len(views), dtype=np.int64), counts),
+            incr=np.array([Ranger.sample_increment(v.sensor) for v in views], np.float64),
+            rmax=np.array([v.range_max for v in views], np.float64),
+            ray_class=np.array([self._ray_zs.index(v.beam_z) for v in views], np.int64),
+            root=np.array([v.model.root.index for v in views], np.int64),
+            origins=np.empty((len(views), 4), np.float64))
+
     def _cast_rays(self, now, layer):
         due = []
         for k, (_, v) in enumerate(self._views):

@@ -28,12 +28,13 @@ from .worldfile import WorldError, Worldfile
 #: Top-level properties Stage reads (the GUI ones too: the window is optional here).
 TOP_LEVEL = ('name', 'show_clock', 'show_clock_interval', 'threads', 'paused',
              'confirm_on_quit', 'log')
-#: Stage's model typetable: every type a world may name, and the class each one loads as
-#: (the others are plain models); the types simulated here (the others: their bodies only).
+#: Stage's model typetable: every type a world may name.
 BUILTIN_TYPES = ('model', 'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'camera',
                  'fiducial', 'gripper', 'lightindicator', 'position', 'ranger')
+#: The class each type loads as (any other: a plain Model).
 CLASSES = {'position': Position, 'ranger': Ranger, 'fiducial': Fiducial,
            'blobfinder': Blobfinder, 'camera': Camera, 'blinkenlight': Blinkenlight}
+#: The types simulated here; the others are loaded as bodies only (with a WARN).
 SIMULATED_TYPES = ('model', 'position', 'ranger')
 
 
