@@ -44,7 +44,7 @@ LESSON_VIEW = ('stageros', 'desktop', 'Xvnc', 'openbox', 'xterm')
 X_SAMPLE_S = 0.002
 WARM_PAGE = 'data:text/html,<title>a browser already open</title>'
 STAGE_TITLE = 'willow-multi-erratic.world'
-CLOCK_BOX_RGB = (204, 204, 255)  # Stage's status box (stage_lite's world_picture)
+CLOCK_BOX_RGB = (204, 204, 255)  # Stage's status box (stage_lite.view.world_picture)
 DISPLAY_LINE = re.compile(r'DISPLAY=(\S+) XAUTHORITY=(\S+)')
 #: Page-side sampler: a cheap hash of the status strip on every animation frame; the wall
 #: times (ms) at which it changed.

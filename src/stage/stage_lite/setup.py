@@ -3,5 +3,6 @@ from catkin_pkg.python_setup import generate_distutils_setup
 from setuptools import setup
 
 setup(**generate_distutils_setup(
-    packages=['stage_lite', 'stage_lite.model', 'stage_lite.node', 'stage_lite.testing'],
+    packages=['stage_lite', 'stage_lite.model', 'stage_lite.node', 'stage_lite.view',
+              'stage_lite.testing'],
     package_dir={'': 'src'}))

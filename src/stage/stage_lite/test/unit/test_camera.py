@@ -1,9 +1,9 @@
-"""stage_lite.node.camera: Stage's view of the world, its window block, the mouse's pan and zoom."""
+"""stage_lite.view.camera: Stage's view of the world, its window block, the mouse's pan and zoom."""
 import math
 
 import numpy as np
 import pytest
-from stage_lite.node.camera import (
+from stage_lite.view.camera import (
     DEFAULT_SIZE_PX,
     MAX_SCALE,
     MIN_SIZE_PX,

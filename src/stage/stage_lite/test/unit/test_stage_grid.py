@@ -1,10 +1,10 @@
-"""Stage's grid and ray walk (stage_lite.model.grid, through small worlds): outlines drawn as
-4-connected lines, the quirks Stage's rays have, and what a beam sees."""
+"""Stage's grid and ray walk (stage_lite.model.grid and .raytrace, through small worlds): outlines
+drawn as 4-connected lines, the quirks Stage's rays have, and what a beam sees."""
 import math
 
 import numpy as np
 import pytest
-from stage_lite.model import grid
+from stage_lite.model import grid, raytrace
 from stage_lite.model.world import load_world
 
 ONE_BEAM = 'define beam ranger ( sensor( range [ 0 5 ] samples 1 ) )\n'
@@ -31,7 +31,7 @@ def test_a_slanted_edge_is_a_4_connected_line():
 @pytest.mark.parametrize('a, b, expected', [(7, 32, 0), (-7, 32, 0), (-40, 32, -1),
                                             (40, 32, 1)])
 def test_c_division_truncates(a, b, expected):
-    assert grid.c_div(a, b) == expected
+    assert raytrace.c_div(a, b) == expected
 
 
 def world(tmp_path, body, robot):
@@ -97,7 +97,7 @@ def test_beams_meet_bodies_whose_height_holds_them(tmp_path, wall_z, seen):
 
 def test_ray_angles_are_rounded_to_floats_one_after_the_other():
     out = np.zeros(3)
-    grid.sample_angles(0.1, 0.25, 3, out, 0)
+    raytrace.sample_angles(0.1, 0.25, 3, out, 0)
     a0 = float(np.float32(0.1))
     a1 = float(np.float32(a0 + 0.25))
     assert out.tolist() == [a0, a1, float(np.float32(a1 + 0.25))]

@@ -1,10 +1,10 @@
-"""Stage's model bodies (stage_lite.model.models): default sizes, CalcSize, boundary, block( )
-shapes, stacking, and the geometry stageros publishes."""
+"""Stage's model bodies (stage_lite.model.models and .bodies): default sizes, CalcSize,
+boundary, block( ) shapes, stacking, and the geometry stageros publishes."""
 import math
 
 import numpy as np
 import pytest
-from stage_lite.model.models import Block, calc_size, canonical_winding
+from stage_lite.model.bodies import Block, calc_size, canonical_winding
 from stage_lite.model.world import load_world
 
 

@@ -1,18 +1,10 @@
-"""Stage's world-file rules (stage_lite.model.worldfile): tokens, macros, includes, readers,
-leniency, and one clear line for what Stage refuses."""
+"""Stage's world-file rules (stage_lite.model.worldfile_syntax and .worldfile): tokens, macros,
+includes, readers, leniency, and one clear line for what Stage refuses."""
 import math
 
 import pytest
-from stage_lite.model.worldfile import (
-    NUM,
-    STRING,
-    WORD,
-    WorldError,
-    Worldfile,
-    c_atof,
-    c_atoi,
-    tokenize,
-)
+from stage_lite.model.worldfile import WorldError, Worldfile, c_atof, c_atoi
+from stage_lite.model.worldfile_syntax import NUM, STRING, WORD, tokenize
 
 DEG = math.pi / 180.0
 
@@ -112,6 +104,14 @@ def test_unused_properties_draw_stage_warning_once(tmp_path):
     wf.read_float(0, 'resolution', 0.02)
     assert wf.unused_warnings() == ['%s:1: property laser_return is defined but not used'
                                     % path]
+
+
+def test_read_values_gives_every_value_as_written_and_marks_them_read(tmp_path):
+    path = write(tmp_path, 'w.world', 'window( center [ -1.5 "x" ] scale 28.8 )\nctrl "wander"')
+    wf = Worldfile(path)
+    assert wf.read_values(1, 'center') == ['-1.5', 'x']
+    assert wf.read_values(1, 'scale') == ['28.8'] and wf.read_values(1, 'size') is None
+    assert wf.unused_warnings() == ['%s:2: property ctrl is defined but not used' % path]
 
 
 @pytest.mark.parametrize('text, line, what', [

@@ -110,22 +110,6 @@ def test_occupancy_grid_rows_start_at_the_lowest_y():
     assert data[0, 5] == 100 and data[3, 0] == 100 and data.sum() == 200
 
 
-@pytest.mark.parametrize('factor, expected', [
-    (1, [[1, 0, 0], [0, 0, 0], [0, 0, 1]]),
-    (2, [[1, 0], [0, 1]]),
-    (3, [[1]]),
-])
-def test_coarsen_keeps_any_wall(factor, expected):
-    grid = np.array([[1, 0, 0], [0, 0, 0], [0, 0, 1]], bool)
-    assert map_msg.coarsen(grid, factor).astype(int).tolist() == expected
-
-
-@pytest.mark.parametrize('factor', [0, 1.5, -2])
-def test_coarsen_refuses_bad_factors(factor):
-    with pytest.raises(ValueError):
-        map_msg.coarsen(np.zeros((2, 2), bool), factor)
-
-
 def test_map_grid_refuses_a_bad_resolution():
     with pytest.raises(ValueError):
         map_msg.map_grid((np.zeros((2, 2), bool), 0, 0, 0.02), 0.0)

@@ -5,9 +5,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from course_common.save_image import write_png
-from stage_lite.node import world_picture as picture
-from stage_lite.node.camera import Camera
-from stage_lite.node.world_picture import DrawOptions, FloorPlan, RobotView, ScanView, Trails
+from stage_lite.view import world_picture as picture
+from stage_lite.view.camera import Camera
+from stage_lite.view.world_picture import DrawOptions, FloorPlan, RobotView, ScanView, Trails
 
 TOL = 1e-9  # m / px: plain affine maps
 ALPHA = round(picture.FAN_ALPHA * 255) / 255    # Pillow blends in whole steps of 1/255

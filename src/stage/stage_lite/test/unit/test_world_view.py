@@ -1,10 +1,10 @@
-"""stage_lite.node.world_view: what the window and ~save_image draw from."""
+"""stage_lite.view.world_view: what the window and ~save_image draw from."""
 import numpy as np
 from stage_lite.model.world import load_world
-from stage_lite.node.camera import ROBOTS_MARGIN_M
-from stage_lite.node.world_picture import DrawOptions
-from stage_lite.node.world_view import WorldView
 from stage_lite.testing.room import write_room_pgm
+from stage_lite.view.camera import ROBOTS_MARGIN_M
+from stage_lite.view.world_picture import DrawOptions
+from stage_lite.view.world_view import WorldView
 
 WORLD = '''resolution 0.02
 interval_sim 100

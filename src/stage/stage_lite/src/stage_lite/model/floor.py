@@ -2,7 +2,8 @@
 
 Stage's grid holds only the outlines of bodies (grid.py); a picture or a map wants them
 filled: a floor plan's occupied pixels, a box's whole footprint. filled() gives that, on the
-world's cells, together with the outline cells Stage itself uses.
+world's cells, together with the outline cells Stage itself uses; coarsen() shrinks it for a
+coarser map or a zoomed-out picture without losing a thin wall.
 """
 import math
 
@@ -86,3 +87,15 @@ def _fill_polygon(occ, vertices, x0, y0):
         xc = xa + (py - ya) * (xb - xa) / (yb - ya)
         inside ^= crosses & (px[None, :] < xc)
     occ[r0:r1, c0:c1] |= inside
+
+
+def coarsen(grid, factor):
+    """grid (bool, rows x cols) shrunk by an integer factor: a cell is True if any under it is."""
+    if factor < 1 or int(factor) != factor:
+        raise ValueError('the shrink factor must be a whole number >= 1, not %r' % (factor,))
+    factor = int(factor)
+    rows, cols = grid.shape
+    out_r, out_c = -(-rows // factor), -(-cols // factor)
+    padded = np.zeros((out_r * factor, out_c * factor), dtype=bool)
+    padded[:rows, :cols] = grid
+    return padded.reshape(out_r, factor, out_c, factor).any(axis=(1, 3))

@@ -19,13 +19,8 @@ import io
 
 import numpy as np
 
+from .jit import njit
 from .worldfile import WorldError
-
-try:
-    from numba import njit
-except ImportError:  # pragma: no cover - python3-numba is a dependency
-    def njit(*args, **kwargs):
-        return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
 #: Stage: a pixel whose first channel is above this is free floor.
 FREE_ABOVE = 127

@@ -12,7 +12,8 @@ in Stage's order because the body's last bits depend on it:
   size z (`stack_children`, default 1);
 - defaults: size [0.4 0.4 1.0] (ranger [0.15 0.15 0.2]), colour red, obstacle_return 1,
   ranger_return 1.0 (negative: invisible to rangers), update_interval 100 ms.
-Position and ranger properties are read as Stage's ModelPosition and ModelRanger read them.
+The blocks' geometry (CalcSize, the bounding box, winding) is bodies.py's; the ranger's and
+the position model's own properties are read in ranger.py and position.py.
 """
 import math
 import os
@@ -20,24 +21,15 @@ import os
 import numpy as np
 
 from . import image
+from .bodies import Block, bounding_box, calc_size, canonical_winding, rect_block
 from .pose import pose_add, stage_normalize
 from .worldfile import WorldError
 
 DEFAULT_SIZE = (0.4, 0.4, 1.0)        # Stage's Size()
-RANGER_SIZE = (0.15, 0.15, 0.2)       # ModelRanger: a SICK LMS
 CAMERA_SIZE = (0.1, 0.07, 0.05)
 BLINKENLIGHT_SIZE = (0.02, 0.02, 0.02)
-SENSOR_SIZE = (0.02, 0.02, 0.02)      # a ranger's transducer; its beam leaves at half height
 BOUNDARY_WIDTH = 0.01                 # Model::Load's boundary rectangles, m
-BILLION = 1e9                         # BlockGroup::BoundingBox's starting extremes
-DBL_EPSILON = 2.220446049250313e-16
-# ModelPosition's integration error when the world gives no odom_error: each axis drawn once
-# in [-E/2, E/2) (the angle's 0.05 is used as radians: it is not read from a file)
-INTEGRATION_ERROR_MAX = (0.03, 0.03, 0.0, 0.05)
 DEFAULT_INTERVAL_US = 100000
-BUILTIN_TYPES = ('model', 'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'camera',
-                 'fiducial', 'gripper', 'lightindicator', 'position', 'ranger')
-SIMULATED_TYPES = ('model', 'position', 'ranger')
 DEFAULT_COLOR = (1.0, 0.0, 0.0, 1.0)  # Stage's Color(): red
 
 # A few X11 names, used when the system's rgb.txt is not there (Stage reads its own copy).
@@ -84,82 +76,6 @@ def colour(name):
         except ValueError:
             rgb = None
     return None if rgb is None else (rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0, 1.0)
-
-
-class Block:
-    """A polygon of the model's body: points (N, 2) in the model's frame, and its height
-    range (local z, from the model's base)."""
-
-    def __init__(self, pts, zmin, zmax):
-        self.pts = np.array(pts, dtype=np.float64).reshape(-1, 2)
-        self.zmin = zmin
-        self.zmax = zmax
-
-
-def rect_block(x, y, dx, dy, dz):
-    """Model::AddBlockRect's block."""
-    return Block([(x, y), (x + dx, y), (x + dx, y + dy), (x, y + dy)], 0.0, dz)
-
-
-def bounding_box(blocks):
-    """BlockGroup::BoundingBox: (minx, maxx, miny, maxy, minz, maxz), +-1e9 when empty."""
-    minx = miny = minz = BILLION
-    maxx = maxy = maxz = -BILLION
-    for b in blocks:
-        if len(b.pts):
-            minx = min(minx, float(b.pts[:, 0].min()))
-            maxx = max(maxx, float(b.pts[:, 0].max()))
-            miny = min(miny, float(b.pts[:, 1].min()))
-            maxy = max(maxy, float(b.pts[:, 1].max()))
-        minz = min(minz, b.zmin)
-        maxz = max(maxz, b.zmax)
-    return minx, maxx, miny, maxy, minz, maxz
-
-
-def _not_zero(v):
-    return v if abs(v) >= DBL_EPSILON else DBL_EPSILON
-
-
-def calc_size(blocks, size):
-    """BlockGroup::CalcSize: scale the blocks so their bounding box fills `size` (x, y about
-    the box's centre, z from 0), in Stage's order of operations."""
-    minx, maxx, miny, maxy, minz, maxz = bounding_box(blocks)
-    sx, sy, sz = _not_zero(maxx - minx), _not_zero(maxy - miny), _not_zero(maxz - minz)
-    offx = minx + sx / 2.0
-    offy = miny + sy / 2.0
-    for b in blocks:
-        b.pts[:, 0] = (b.pts[:, 0] - offx) * (size[0] / sx)
-        b.pts[:, 1] = (b.pts[:, 1] - offy) * (size[1] / sy)
-        b.zmin = (b.zmin - 0.0) * (size[2] / sz)
-        b.zmax = (b.zmax - 0.0) * (size[2] / sz)
-
-
-class Sensor:
-    """One `sensor( )` of a ranger: pose in the ranger's frame, size, range [min, max] (m),
-    fov (rad), samples, noise (constant variance m^2, proportional, angle)."""
-
-    def __init__(self):
-        self.pose = (0.0, 0.0, 0.0, 0.0)
-        self.size = SENSOR_SIZE
-        self.range = (0.0, 5.0)
-        self.fov = 0.1
-        self.samples = 1
-        self.noise = (0.0, 0.0, 0.0)
-        self.where = None
-
-    def load(self, wf, e):
-        self.where = (wf.entities[e].path, wf.entities[e].line)
-        self.pose = read_pose(wf, e, 'pose', self.pose)
-        self.size = tuple(wf.read_tuple(e, 'size', 'lll') or self.size)
-        self.range = tuple(wf.read_tuple(e, 'range', 'll') or self.range)
-        self.fov = wf.read_angle(e, 'fov', self.fov)
-        self.samples = wf.read_int(e, 'samples', self.samples)
-        self.noise = tuple(wf.read_tuple(e, 'noise', 'lfa') or self.noise)
-        read_colour(wf, e, (0.0, 0.0, 1.0, 0.15))
-        p = wf.prop(e, 'samples')
-        if self.samples < 1:
-            raise WorldError(p.path if p else self.where[0], p.line if p else self.where[1],
-                             'samples must be at least 1, got %d' % self.samples)
 
 
 def read_pose(wf, e, name, default):
@@ -301,11 +217,11 @@ class Model:
         self.stack_children = bool(wf.read_int(e, 'stack_children', 1))
         self.obstacle_return = bool(wf.read_int(e, 'obstacle_return', 1))
         self.ranger_return = wf.read_float(e, 'ranger_return', self.ranger_return)
-        p = wf.prop(e, 'ctrl')
-        if p is not None:
-            self.ctrl = [wf._value(p, k) for k in range(len(p.values))]
-            wf.warn(p, 'ctrl %s: controller plugins are not run here; the model is loaded and'
-                    ' nothing drives it' % ' '.join(self.ctrl))
+        ctrl = wf.read_values(e, 'ctrl')
+        if ctrl is not None:
+            self.ctrl = ctrl
+            wf.warn(wf.prop(e, 'ctrl'), 'ctrl %s: controller plugins are not run here; the model'
+                    ' is loaded and nothing drives it' % ' '.join(self.ctrl))
         interval_ms = wf.read_int(e, 'update_interval', self.interval_us // 1000)
         self.interval_us = 1000 * interval_ms
         if self.interval_us <= 0:
@@ -359,114 +275,6 @@ class Model:
         self.blocks.append(Block(canonical_winding(pts), z[0], z[1]))
 
 
-def canonical_winding(pts):
-    """block.cc's canonicalize_winding: counter-clockwise (the sum of the turns between
-    successive edges, each in (-pi, pi], must be positive), else reversed."""
-    n = len(pts)
-    vs = [(pts[(i + 1) % n][0] - pts[i][0], pts[(i + 1) % n][1] - pts[i][1]) for i in range(n)]
-    total = 0.0
-    for i in range(n):
-        a1 = math.atan2(vs[i][1], vs[i][0])
-        while a1 < 0:
-            a1 += 2 * math.pi
-        a2 = math.atan2(vs[(i + 1) % n][1], vs[(i + 1) % n][0])
-        while a2 < 0:
-            a2 += 2 * math.pi
-        d = a2 - a1
-        while d < -math.pi:
-            d += 2 * math.pi
-        while math.pi < d:
-            d -= 2 * math.pi
-        total += d
-    return pts if total > 0 else pts[::-1]
-
-
-class Ranger(Model):
-    """ModelRanger: no body of its own, its `sensor( )`s."""
-
-    def construct(self):
-        self.color = (0.0, 0.0, 0.5, 1.0)
-        self.clear_blocks()
-        self.set_geom((0.0, 0.0, 0.0, 0.0), RANGER_SIZE)
-        self.sensors = []
-
-    def load_sensor(self, wf, e):
-        s = Sensor()
-        s.load(wf, e)
-        self.sensors.append(s)
-
-    def ray_origin(self, sensor):
-        """The first ray's pose (x, y, z, a) in the world, as Sensor::Update makes it: the
-        sensor's pose, turned to the first beam, raised to half the transducer's height."""
-        x, y, z, a = sensor.pose
-        start = -sensor.fov / 2.0 if sensor.samples > 1 else 0.0
-        local = (x, y, z + sensor.size[2] / 2.0, a + start)
-        return pose_add(self.body_pose(), local)
-
-    @staticmethod
-    def sample_increment(sensor):
-        return sensor.fov / max(sensor.samples - 1, 1)
-
-
-class Position(Model):
-    """ModelPosition: drive, localisation and velocity bounds; its state lives in the World."""
-
-    def construct(self):
-        self.drive = 'diff'
-        self.localization = 'gps'
-        self.wheelbase = 1.0
-        self.velocity_bounds = [(-1.0, 1.0), (-1.0, 1.0), (-1.0, 1.0),
-                                (-math.pi / 2.0, math.pi / 2.0)]
-        self.initial_velocity = (0.0, 0.0, 0.0, 0.0)
-        self.integration_error = None
-
-    def load(self, wf, rng):
-        super().load(wf, rng)
-        e = self.entity
-        v = read_pose(wf, e, 'velocity', None)
-        if v is not None:
-            self.initial_velocity = v
-        if wf.exists(e, 'drive'):
-            drive = wf.read_string(e, 'drive', 'diff')
-            if drive not in ('diff', 'omni', 'car'):
-                wf.warn(wf.prop(e, 'drive'), 'invalid drive "%s" (diff, omni or car); Stage'
-                        ' uses "diff"' % drive)
-            else:
-                self.drive = drive
-        self.wheelbase = wf.read_length(e, 'wheelbase', self.wheelbase)
-        if wf.exists(e, 'odom'):
-            wf.warn(wf.prop(e, 'odom'), 'the odom property is no longer read by Stage;'
-                    ' use localization_origin')
-        gpose = self.global_pose()
-        self.est_origin = read_pose(wf, e, 'localization_origin', gpose)
-        err = read_pose(wf, e, 'odom_error', None)
-        if err is None:
-            err = tuple(rng.random() * m - m / 2.0 for m in INTEGRATION_ERROR_MAX)
-        self.integration_error = err
-        if wf.exists(e, 'localization'):
-            loc = wf.read_string(e, 'localization', 'gps')
-            if loc not in ('gps', 'odom'):
-                wf.warn(wf.prop(e, 'localization'), 'unknown localization "%s" (gps or odom);'
-                        ' Stage keeps "gps"' % loc)
-            else:
-                self.localization = loc
-        wf.read_tuple(e, 'acceleration_bounds', 'llllllaa')
-        vb = wf.read_tuple(e, 'velocity_bounds', 'llllllaa')
-        if vb is not None:
-            self.velocity_bounds = [(vb[0], vb[1]), (vb[2], vb[3]), (vb[4], vb[5]),
-                                    (vb[6], vb[7])]
-
-    def initial_estimate(self):
-        """est_pose at load: the pose in the localisation origin's frame."""
-        gx, gy, _, ga = self.global_pose()
-        ox, oy, _, oa = self.est_origin
-        cosa = math.cos(oa)
-        sina = math.sin(oa)
-        dx = gx - ox
-        dy = gy - oy
-        return (dx * cosa + dy * sina, dy * cosa - dx * sina, 0.0, stage_normalize(ga - oa))
-
-
 class Fiducial(Model):
     def construct(self):
         self.clear_blocks()
@@ -488,15 +296,3 @@ class Blinkenlight(Model):
     def construct(self):
         self.color = (0.0, 1.0, 0.0, 1.0)
         self.set_geom((0.0, 0.0, 0.0, 0.0), BLINKENLIGHT_SIZE)
-
-
-CLASSES = {'position': Position, 'ranger': Ranger, 'fiducial': Fiducial,
-           'blobfinder': Blobfinder, 'camera': Camera, 'blinkenlight': Blinkenlight}
-
-
-def new_model(world_dir, parent, kind, index, entity, counts):
-    return CLASSES.get(kind, Model)(world_dir, parent, kind, index, entity, counts)
-
-
-__all__ = ['Model', 'Position', 'Ranger', 'Sensor', 'Block', 'new_model', 'calc_size',
-           'BUILTIN_TYPES', 'SIMULATED_TYPES']

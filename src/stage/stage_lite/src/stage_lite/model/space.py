@@ -1,13 +1,14 @@
 """The grid's storage: static bodies put in once, moving bodies drawn and erased as they move.
 
-Space owns the arrays grid.py's kernels walk (see grid.py for what they mean) and keeps the
-region table large enough for every body, growing it when a robot drives out of it.
+Space owns the arrays grid.py's and raytrace.py's kernels walk (see grid.py for what they
+mean) and keeps the region table large enough for every body, growing it when a robot drives
+out of it.
 """
 import math
 
 import numpy as np
 
-from . import grid
+from . import grid, raytrace
 
 REGION = grid.REGION
 MARGIN_REGIONS = 4        # table margin around the bodies, regions (2.56 m at 2 cm cells)
@@ -176,11 +177,11 @@ class Space:
         """Stage's UnMap then Map of blocks (int array) at their body poses (rows x, y, cos,
         sin) in `layer`, each with its drawing's sequence number."""
         self.hold(blocks, poses)
-        grid._redraw(blocks, poses, seqs, layer, self.ppm, self.blk_pts, self.blk_pts_off,
-                     self._vx, self._vy, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
-                     self.rx0, self.ry0, self.nrx, self.nry, self.reg_count, self.reg_dyn,
-                     self.reg_dyncount, self.dyn_head, self.ent_block, self.ent_next,
-                     self.ent_seq, self.free_state, self.ent_free, self.page_free)
+        grid.redraw(blocks, poses, seqs, layer, self.ppm, self.blk_pts, self.blk_pts_off,
+                    self._vx, self._vy, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
+                    self.rx0, self.ry0, self.nrx, self.nry, self.reg_count, self.reg_dyn,
+                    self.reg_dyncount, self.dyn_head, self.ent_block, self.ent_next,
+                    self.ent_seq, self.free_state, self.ent_free, self.page_free)
 
     def move(self, blocks, new_poses, old_poses, seqs, layer):
         """ModelPosition::Move's grid work (grid.move): the blocks drawn at the new poses,
@@ -210,7 +211,7 @@ class Space:
         out_range = np.empty(n, np.float64)
         out_model = np.empty(n, np.int64)
         angles = np.empty(n, np.float64)
-        cast = grid.cast_scans_parallel if n >= PARALLEL_RAYS else grid.cast_scans
+        cast = raytrace.cast_scans_parallel if n >= PARALLEL_RAYS else raytrace.cast_scans
         cast(origins, incr, offsets, sensor, rmax, ray_class, root, layer, self.ppm, self.rx0,
              self.ry0, self.nrx, self.nry, self.reg_count, self.reg_static, self.reg_dyn,
              self.st_ray, self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,

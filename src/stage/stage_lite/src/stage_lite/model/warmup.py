@@ -1,24 +1,27 @@
 """Compile stage_lite's kernels once, ahead of the first stageros: `python3 -m
 stage_lite.model.warmup` (./ws build runs it).
 
-numba compiles the grid's kernels at their first call and keeps them in its cache
+numba compiles the model's kernels (jit.py) at their first call and keeps them in its cache
 (__pycache__ beside the sources, or NUMBA_CACHE_DIR); a stageros that finds them there
 starts in a fraction of a second instead of a few seconds. A small world with a floor plan,
-a body, a robot that moves into it and a laser calls every kernel with the argument types
-stageros uses.
+a body, a robot that moves into it, two lasers whose rays numba's threads share and one
+whose few rays are cast in the calling thread calls every kernel with the argument types
+stageros uses (test_stage_warmup.py checks that none is left out).
 """
 import os
 import sys
 import tempfile
 import time
 
-# a laser with enough beams for the threads too (space.PARALLEL_RAYS)
+# lasers with enough beams for the threads too (space.PARALLEL_RAYS), and one with a few
 WORLD = '''resolution 0.02
 define laser ranger ( sensor( range [ 0 5 ] fov 180 samples %d ) )
+define short_laser ranger ( sensor( range [ 0 5 ] fov 180 samples 5 ) )
 model( bitmap "plan.pgm" size [ 2 2 0.5 ] pose [ 0 0 0 10 ] )
 model( pose [ 0.6 0 0 0 ] size [ 0.1 0.3 0.5 ] )
 position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) )
 position( pose [ -0.6 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) )
+position( pose [ 0 -0.6 0 0 ] size [ 0.3 0.3 0.2 ] short_laser( ) )
 '''
 
 
@@ -36,7 +39,8 @@ def warm():
         world.set_command(0, 1.0, 0.0, 0.0)
         for _ in range(6):
             world.step()
-        world.scan_from(world.robots[0].rangers[0], world.robots[0].model.pose)
+        for robot in (world.robots[0], world.robots[2]):   # the threads', then this one's
+            world.scan_from(robot.rangers[0], robot.model.pose)
         world.occupancy()
 
 

@@ -1,8 +1,7 @@
 """The simulated world as Stage 4.3 and stageros 1.8.0 run it (no rospy).
 
-Loading (World::Load): every entity in file order becomes a model (a `block( )` joins its
-model's body, a `sensor( )` its ranger, `window( )` is the GUI's), then every model's body is
-sized and drawn into the grid in both layers.
+Loading (World::Load and its post-load hook) is world_load's; the World runs what it loaded:
+the commands, the step, reset, the rays, and the floor for pictures and maps.
 
 One step (World::Update, as stageros drives it), sim time first advanced by interval_sim:
 1. each position model due (every update_interval) turns its goal (the last cmd_vel) into
@@ -23,98 +22,13 @@ import os
 
 import numpy as np
 
-from . import floor, grid
-from .models import BUILTIN_TYPES, SIMULATED_TYPES, Position, Ranger, calc_size, new_model
+from . import floor, grid, world_load
 from .pose import pose_add, stage_normalize
-from .space import DynamicBlock, Space
-from .worldfile import WorldError, Worldfile
+from .ranger import Ranger
+from .robot import body_row
+from .worldfile import WorldError
 
-__all__ = ['World', 'Robot', 'WorldError', 'load_world']
-
-#: Top-level properties Stage reads (the GUI ones too: the window is optional here).
-TOP_LEVEL = ('name', 'show_clock', 'show_clock_interval', 'threads', 'paused',
-             'confirm_on_quit', 'log')
-
-
-class RangerView:
-    """What stageros publishes of a ranger: its first sensor's scan and the tf pose."""
-
-    def __init__(self, model, sensor, robot_height):
-        self.model = model
-        self.sensor = sensor
-        x, y, z, a = model.pose
-        self.pose = (x, y, robot_height + z, a)       # base_link -> base_laser_link
-        self.range_min, self.range_max = sensor.range
-        self.samples = sensor.samples
-        self.fov_rad = sensor.fov
-        self.noise = sensor.noise
-        self.ranges = np.full(self.samples, self.range_max, np.float32)
-        self.intensities = np.zeros(self.samples, np.float32)
-        self.has_data = False       # stageros publishes a ranger after its first update
-        self.next_update_us = model.interval_us
-        self.beam_z = model.ray_origin(sensor)[2]
-
-    @property
-    def angle_min(self):
-        return -self.fov_rad / 2.0
-
-    @property
-    def angle_max(self):
-        return self.fov_rad / 2.0
-
-    @property
-    def angle_increment(self):
-        # stageros divides by samples - 1 even when it is 0 (IEEE: inf, or nan for fov 0)
-        if self.samples > 1:
-            return self.fov_rad / (self.samples - 1)
-        return math.inf if self.fov_rad > 0 else math.nan
-
-    def local_angles(self):
-        """The beams' angles in the sensor's frame (a one-beam sensor's: angle_min)."""
-        step = self.fov_rad / (self.samples - 1) if self.samples > 1 else 0.0
-        return self.angle_min + np.arange(self.samples) * step
-
-
-class Robot:
-    """A position model and its Stage state (goal, velocity, estimate, stall)."""
-
-    def __init__(self, index, model, rangers):
-        self.index = index
-        self.model = model
-        self.model_name = model.name
-        self.color_rgb = model.color[:3]
-        self.size = model.geom_size
-        self.origin = model.geom_pose
-        self.rangers = rangers
-        self.drive = model.drive
-        self.localization = model.localization
-        gp = model.global_pose()
-        self.initial_global = gp
-        self.start_pose = (gp[0], gp[1], gp[3])
-        self.goal = (0.0, 0.0, 0.0, 0.0)
-        self.velocity = model.initial_velocity
-        self.est_pose = model.initial_estimate()
-        self.stalled = False
-        self.truth_twist = (0.0, 0.0, 0.0)
-        self.next_update_us = model.interval_us
-        self.tree = []          # every model of the robot (itself first), in drawing order
-        self.blocks = []        # [(model, dynamic block indices)] in drawing order
-
-    @property
-    def pose(self):
-        """(x, y, yaw): the world pose (ground truth)."""
-        x, y, _, a = self.model.global_pose()
-        return (x, y, a)
-
-    @property
-    def odom_pose(self):
-        x, y, _, a = self.est_pose
-        return (x, y, a)
-
-    @property
-    def command(self):
-        """The velocity Stage applies (odom's twist): vx, vy, wz."""
-        return (self.velocity[0], self.velocity[1], self.velocity[3])
+__all__ = ['World', 'WorldError', 'load_world']
 
 
 class World:
@@ -122,195 +36,35 @@ class World:
 
     def __init__(self, path, seed=None):
         self.path = path
+        # one generator for what loading draws (random colours, odometry errors), then noise
         self._rng = np.random.default_rng(seed)
-        wf = Worldfile(path)
-        self.wf = wf
-        self.resolution_m = wf.read_float(0, 'resolution', 0.02)
-        if not self.resolution_m > 0:
-            raise _top_error(wf, 'resolution', 'resolution must be > 0 m')
-        self.ppm = 1.0 / self.resolution_m
-        self.interval_us = int(1e3 * wf.read_float(0, 'interval_sim', 100.0))
-        if self.interval_us <= 0:
-            raise _top_error(wf, 'interval_sim', 'interval_sim must be at least 0.001 ms')
+        loaded = world_load.load(path, self._rng)
+        self.resolution_m = loaded.resolution_m
+        self.ppm = loaded.ppm
+        self.interval_us = loaded.interval_us
         self.interval_sim_s = self.interval_us / 1e6
-        self.quit_time_s = int(1e6 * wf.read_float(0, 'quit_time', 0.0)) / 1e6
-        self.speedup = wf.read_float(0, 'speedup', 1.0)
-        for name in TOP_LEVEL:
-            if wf.exists(0, name):
-                wf.read_string(0, name, '')
-        self.window = None
+        self.quit_time_s = loaded.quit_time_s
+        self.speedup = loaded.speedup
+        self.window = loaded.window
+        self.models = loaded.models
+        self.robots = loaded.robots
+        self.space = loaded.space
+        self.warnings = loaded.warnings
+        self._ray_zs = loaded.ray_zs
+        self._statics = loaded.statics
+        self._static_cells = loaded.static_cells
+        self._occupancy = None
         self.sim_time_us = 0
         self.updates = 0
-        self.models = []
-        self._load_models(wf)
-        self._setup()
-        self.warnings = wf.warnings + wf.unused_warnings()
-
-    @property
-    def sim_time_s(self):
-        return self.sim_time_us / 1e6
-
-    # ---- loading ---------------------------------------------------------------------------
-    def _load_models(self, wf):
-        world_dir = os.path.dirname(os.path.abspath(self.path))
-        by_entity = {}
-        counts = {}
-        for ent in wf.entities[1:]:
-            parent = by_entity.get(ent.parent)
-            if ent.kind == 'window':
-                self.window = self._read_window(wf, ent.index)
-            elif ent.kind == 'block':
-                if parent is None:
-                    raise WorldError(ent.path, ent.line, 'block( ) belongs inside a model')
-                parent.load_block(wf, ent.index)
-            elif ent.kind == 'sensor':
-                if not isinstance(parent, Ranger):
-                    raise WorldError(ent.path, ent.line, 'sensor( ) belongs inside a ranger')
-                parent.load_sensor(wf, ent.index)
-            elif ent.kind in BUILTIN_TYPES:
-                if ent.parent != 0 and parent is None:
-                    raise WorldError(ent.path, ent.line, 'a %s inside a window( )' % ent.kind)
-                m = new_model(world_dir, parent, ent.kind, len(self.models), ent.index, counts)
-                m.load(wf, self._rng)
-                if ent.kind not in SIMULATED_TYPES:
-                    wf.warnings.append('%s:%d: %s models are not simulated here; loaded as a'
-                                       ' body' % (ent.path, ent.line, ent.kind))
-                self.models.append(m)
-                by_entity[ent.index] = m
-            else:
-                raise WorldError(ent.path, ent.line, 'unknown model type "%s" (Stage: "Model'
-                                 ' type %s not found in model typetable")'
-                                 % (ent.kind, ent.kind))
-
-    @staticmethod
-    def _read_window(wf, e):
-        """The GUI's window( ) properties, read as numbers or strings."""
-        out = {}
-        for name, p in wf.entities[e].props.items():
-            vals = [wf._value(p, k) for k in range(len(p.values))]
-            nums = []
-            for v in vals:
-                try:
-                    nums.append(float(v))
-                except ValueError:
-                    nums = None
-                    break
-            vals = nums if nums is not None else vals
-            out[name] = vals[0] if len(vals) == 1 else vals
-        return out
-
-    def _setup(self):
-        """World::LoadWorldPostHook: size every body, draw everything; the robots."""
-        for m in self.models:
-            calc_size(m.blocks, m.geom_size)
-        moving = set()
-        self.robots = []
-        for m in self.models:
-            if isinstance(m, Position):
-                moving.add(m.index)
-                rangers = []
-                for c in m.children:
-                    if isinstance(c, Ranger):
-                        if not c.sensors:
-                            self.wf.warnings.append('%s: ranger %s has no sensor( ): not'
-                                                    ' published' % (self.path, c.token))
-                            continue
-                        if len(c.sensors) > 1:
-                            self.wf.warnings.append('%s: ranger %s has %d sensors; stageros'
-                                                    ' publishes the first only'
-                                                    % (self.path, c.token, len(c.sensors)))
-                        rangers.append(RangerView(c, c.sensors[0], m.geom_size[2]))
-                self.robots.append(Robot(len(self.robots), m, rangers))
-            elif m.parent is not None and m.parent.index in moving:
-                moving.add(m.index)
-        roots = [m.root.index for m in self.models]
-        self.space = Space(self.ppm, len(self.models), roots,
-                           [m.ranger_return for m in self.models],
-                           [m.obstacle_return for m in self.models])
-        statics = ([], [], [], [], [])
-        dynamic = []
-        coll = []
-        for m in self.models:
-            for block in m.blocks:
-                vx, vy = m.pixel_vertices(block, self.ppm)
-                zmin, zmax = m.block_z(block)
-                if m.index in moving:
-                    d = DynamicBlock(m, block, zmin, zmax)
-                    if (zmin, zmax) not in coll:
-                        coll.append((zmin, zmax))
-                    d.coll = coll.index((zmin, zmax))
-                    d.vertices = (vx, vy)
-                    dynamic.append(d)
-                    continue
-                n = grid.poly_cell_count(vx, vy)
-                xs = np.empty(n, np.int64)
-                ys = np.empty(n, np.int64)
-                grid.poly_cells(vx, vy, xs, ys, 0)
-                statics[0].append(xs)
-                statics[1].append(ys)
-                statics[2].append(np.full(n, m.index, np.int64))
-                statics[3].append(np.full(n, zmin))
-                statics[4].append(np.full(n, zmax))
-        cells = tuple(np.concatenate(a) if a else np.zeros(0, t)
-                      for a, t in zip(statics, (np.int64, np.int64, np.int64, float, float),
-                                    strict=True))
-        self._ray_zs = sorted({v.beam_z for r in self.robots for v in r.rangers})
-        extent = self._extent(dynamic)
-        self.space.build(cells, self._ray_zs, dynamic, coll, extent)
-        self._static_cells = (cells[0].astype(np.int32), cells[1].astype(np.int32))
-        self._statics = [m for m in self.models if m.index not in moving]
-        self._occupancy = None
-        index = {id(d): k for k, d in enumerate(dynamic)}
-        for r in self.robots:
-            r.tree = _tree(r.model)
-            r.blocks = [(m, [index[id(d)] for d in dynamic if d.model is m]) for m in r.tree]
-            r.blocks = [(m, ks) for m, ks in r.blocks if ks]
-            r.block_ids = np.array([k for _, ks in r.blocks for k in ks], np.int64)
-        self._dynamic = dynamic
-        # load-time drawings in model order, both layers (sequence = the model's index)
-        for r in self.robots:
-            for m, ks in r.blocks:
-                blocks = np.array(ks, np.int64)
-                poses = np.repeat([body_row(m)], len(ks), axis=0)
-                seqs = np.full(len(ks), m.index, np.int64)
-                for layer in (0, 1):
-                    self.space.draw(blocks, poses, layer, seqs)
         self._prepare_rays()
-
-    @staticmethod
-    def _extent(dynamic):
-        if not dynamic:
-            return (0, 0, 0, 0)
-        xs = np.concatenate([d.vertices[0] for d in dynamic])
-        ys = np.concatenate([d.vertices[1] for d in dynamic])
-        return (int(xs.min()), int(ys.min()), int(xs.max()), int(ys.max()))
-
-    def _prepare_rays(self):
-        views = [(r, v) for r in self.robots for v in r.rangers]
-        self._views = views
-        self._rays = self._ray_tables(range(len(views)))
-
-    def _ray_tables(self, due):
-        """The per-sensor tables of the rangers `due` (indices into _views) for Space.cast."""
-        views = [self._views[k][1] for k in due]
-        counts = np.array([v.samples for v in views], np.int64)
-        return dict(
-            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
-            sensor=np.repeat(np.arange(len(views), dtype=np.int64), counts),
-            incr=np.array([Ranger.sample_increment(v.sensor) for v in views], np.float64),
-            rmax=np.array([v.range_max for v in views], np.float64),
-            ray_class=np.array([self._ray_zs.index(v.beam_z) for v in views], np.int64),
-            root=np.array([v.model.root.index for v in views], np.int64),
-            origins=np.empty((len(views), 4), np.float64))
 
     # ---- the interface -------------------------------------------------------------------
     def set_command(self, i, vx, vy, wz):
         """stageros's cmdvelReceived: SetSpeed(x, y, a), applied at the robot's next update.
         Raises ValueError on NaN or infinity (the node refuses those with a WARN)."""
-        for name, v in (('linear.x', vx), ('linear.y', vy), ('angular.z', wz)):
-            if not math.isfinite(v):
-                raise ValueError('%s must be finite, got %r' % (name, v))
-        self.robots[i].goal = (float(vx), float(vy), 0.0, float(wz))
+        vx, vy, wz = (finite_float(name, v)
+                      for name, v in (('linear.x', vx), ('linear.y', vy), ('angular.z', wz)))
+        self.robots[i].goal = (vx, vy, 0.0, wz)
 
     def stop_all(self):
         """stageros's watchdog: SetSpeed(0, 0, 0) on every robot."""
@@ -407,6 +161,25 @@ class World:
                         np.int64)
 
     # ---- rays --------------------------------------------------------------------------
+    def _prepare_rays(self):
+        """Every ranger of every robot, in order, and their tables for a step's cast."""
+        views = [(r, v) for r in self.robots for v in r.rangers]
+        self._views = views
+        self._rays = self._ray_tables(range(len(views)))
+
+    def _ray_tables(self, due):
+        """The per-sensor tables of the rangers `due` (indices into _views) for Space.cast."""
+        views = [self._views[k][1] for k in due]
+        counts = np.array([v.samples for v in views], np.int64)
+        return dict(
+            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
+            sensor=np.repeat(np.arange(len(views), dtype=np.int64), counts),
+            incr=np.array([Ranger.sample_increment(v.sensor) for v in views], np.float64),
+            rmax=np.array([v.range_max for v in views], np.float64),
+            ray_class=np.array([self._ray_zs.index(v.beam_z) for v in views], np.int64),
+            root=np.array([v.model.root.index for v in views], np.int64),
+            origins=np.empty((len(views), 4), np.float64))
+
     def _cast_rays(self, now, layer):
         due = []
         for k, (_, v) in enumerate(self._views):
@@ -481,22 +254,16 @@ class World:
         return self._occupancy
 
 
-def body_row(m):
-    """The model's body pose as the grid kernels take it: (x, y, cos a, sin a)."""
-    x, y, _, a = m.body_pose()
-    return (x, y, math.cos(a), math.sin(a))
+def finite_float(name, value):
+    """value as a float; ValueError ('NAME must be finite, got VALUE') for NaN or infinity.
 
-
-def _tree(model):
-    out = [model]
-    for c in model.children:
-        out.extend(_tree(c))
-    return out
-
-
-def _top_error(wf, name, what):
-    p = wf.prop(0, name)
-    return WorldError(p.path if p else wf.path, p.line if p else None, what)
+    The model's one finite check: the model depends on no package of the workspace (numpy,
+    numba and Pillow only), so that Stage's rules stand alone and run from this source
+    folder (the model-only bench's children import nothing else); the node and the view
+    check through course_common.finite."""
+    if not math.isfinite(value):
+        raise ValueError('%s must be finite, got %r' % (name, value))
+    return float(value)
 
 
 def load_world(path, seed=None):

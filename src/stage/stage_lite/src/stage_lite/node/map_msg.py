@@ -10,23 +10,12 @@ import struct
 
 import numpy as np
 
+from ..model.floor import coarsen
 from .wire import HEADER_STAMP, string_bytes
 
 OCCUPIED = 100
 FREE = 0
 _INFO = struct.Struct('<IIfII7d')   # map_load_time, resolution, width, height, origin pose
-
-
-def coarsen(grid, factor):
-    """grid (bool, rows x cols) shrunk by an integer factor: a cell is True if any under it is."""
-    if factor < 1 or int(factor) != factor:
-        raise ValueError('the shrink factor must be a whole number >= 1, not %r' % (factor,))
-    factor = int(factor)
-    rows, cols = grid.shape
-    out_r, out_c = -(-rows // factor), -(-cols // factor)
-    padded = np.zeros((out_r * factor, out_c * factor), dtype=bool)
-    padded[:rows, :cols] = grid
-    return padded.reshape(out_r, factor, out_c, factor).any(axis=(1, 3))
 
 
 def map_grid(occupancy, wanted_resolution_m):

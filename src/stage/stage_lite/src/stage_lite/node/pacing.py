@@ -9,10 +9,9 @@
 - Watchdog: stage_ros's base_watchdog_timeout: one shared time of the last cmd_vel, in sim time.
 (The WARNs about bad commands are throttled by course_common.schedule.Throttle.)
 """
-import math
 import threading
 
-from course_common.finite import is_finite_number
+from course_common.finite import check_finite, is_finite_number
 from course_common.schedule import Deadlines
 
 #: Flat out: no pacing, the next step starts when the last one is published.
@@ -44,15 +43,14 @@ def slower(speedup):
 def world_speedup(value):
     """The real-time factor a world's `speedup` asks for, as Stage's window reads it: a value
     above 0 (finite), else as fast as possible (Stage's own examples write `speedup 0`)."""
-    return float(value) if math.isfinite(value) and value > 0 else FLAT_OUT
+    return float(value) if is_finite_number(value) and value > 0 else FLAT_OUT
 
 
 class SimClock:
     """Simulated time after ``steps`` steps of interval_s each."""
 
     def __init__(self, interval_s):
-        if not (math.isfinite(interval_s) and interval_s > 0):
-            raise ValueError('interval_sim must be > 0 s, not %r' % (interval_s,))
+        interval_s = check_finite('interval_sim', interval_s, low=0.0, low_open=True)
         self.interval_ns = max(1, round(interval_s * 1e9))
         self.steps = 0
 

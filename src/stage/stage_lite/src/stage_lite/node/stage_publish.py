@@ -108,13 +108,6 @@ class StepOutput:
         self._robot_pubs = [pub for output in self.robots
                             for pub in (output.odom_pub, output.truth_pub, *output.scan_pubs)]
 
-    def publishers(self):
-        """Every per-step publisher (the global ones, then each robot's)."""
-        pubs = [self.clock_pub, self.tf_pub]
-        for output in self.robots:
-            pubs.extend((output.odom_pub, output.truth_pub, *output.scan_pubs))
-        return pubs
-
     def wait_for_waiting_subscribers(self, timeout_s, poll_s=0.002):
         """Wait (at most timeout_s) until the subscribers that the master already lists for
         our topics have connected, so that the first step reaches them. True if they all did.
@@ -128,7 +121,8 @@ class StepOutput:
         except (OSError, rosgraph.MasterError):
             return False
         waiting = {topic: sum(1 for node in nodes if node != me) for topic, nodes in subscribed}
-        wanted = [(pub, waiting.get(pub.resolved_name, 0)) for pub in self.publishers()]
+        wanted = [(pub, waiting.get(pub.resolved_name, 0))
+                  for pub in (self.clock_pub, self.tf_pub, *self._robot_pubs)]
         deadline = time.monotonic() + timeout_s
         while any(pub.get_num_connections() < count for pub, count in wanted):
             if time.monotonic() >= deadline:

@@ -20,7 +20,7 @@ Global:
               per robot; with ~publish_map: /map (nav_msgs/OccupancyGrid, latched, frame map)
               and /tf_static map -> every robot's odom (identity).
   Services    reset_positions (std_srvs/Empty): every robot to its start pose, stall cleared;
-              ~save_image (stage_lite/SaveImage, with ~save_image_service only): a PNG of
+              ~save_image (course_msgs/SaveImage, with ~save_image_service only): a PNG of
               the world, robots, beams, trails.
   Sets        /use_sim_time true, before the world is loaded (before init_node when the
               master is up); the node's own rospy time follows the sim time it publishes.
@@ -50,6 +50,9 @@ from course_common.rospy_internals import cheap_rosout
 from course_common.schedule import BAD_INPUT_WARN_PERIOD_S, Throttle
 from course_common.startup import init_node
 
+from ..view.status import RateMeter, clock_string
+from ..view.world_picture import render
+from ..view.world_view import WorldView
 from .names import all_robot_names, shared_namespaces
 from .pacing import SimClock, Watchdog, world_speedup
 from .rospy_clock import drop_own_clock_subscription, set_own_time
@@ -57,10 +60,7 @@ from .stage_publish import StepOutput
 from .stage_services import StageServices
 from .stageros_args import ArgsError, parse_args
 from .stageros_params import load_params
-from .status import RateMeter, clock_string
 from .step_loop import StepLoop
-from .world_picture import render
-from .world_view import WorldView
 
 
 class StageNode:
@@ -246,7 +246,7 @@ def main(argv=None):
     node.loop.start()
     try:
         if args.gui:
-            from .gui import run_window  # tkinter only when a window is wanted
+            from ..view.gui import run_window  # tkinter only when a window is wanted
             run_window(world, node.view, node.snapshot, node.loop, lambda: node.clock.steps)
         rospy.spin()
     finally:

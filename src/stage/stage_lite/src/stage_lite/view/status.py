@@ -47,6 +47,3 @@ class RateMeter:
             return 0.0
         (w0, s0), (w1, s1) = self._samples[0], self._samples[-1]
         return (s1 - s0) / (w1 - w0) if w1 > w0 else 0.0
-
-    def clear(self):
-        self._samples.clear()

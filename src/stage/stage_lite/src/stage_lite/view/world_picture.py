@@ -13,7 +13,7 @@ import numpy as np
 from course_common.finite import is_finite_number
 from course_common.trail import Trail
 
-from .map_msg import coarsen
+from ..model.floor import coarsen
 
 #: Stage's canvas around the world (glClearColor(0.7, 0.7, 0.8)).
 OUTSIDE_RGB = (179, 179, 204)
@@ -92,7 +92,7 @@ class FloorPlan:
     """The static picture of a world: its occupancy grid and extent, drawn for any camera.
 
     Zoomed out, a pixel covers several cells: the grid is shrunk first (a cell is a wall if
-    any cell under it is, map_msg.coarsen), so thin walls never vanish; each shrink factor
+    any cell under it is, floor.coarsen), so thin walls never vanish; each shrink factor
     is computed once.
     """
 

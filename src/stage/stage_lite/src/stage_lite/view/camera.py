@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+from course_common.finite import is_finite_number
 
 #: stageros opens its window at 600 x 400 (stage_ros: new Stg::WorldGui(600, 400, ...)).
 DEFAULT_SIZE_PX = (600, 400)
@@ -102,7 +103,7 @@ def _pair(value):
         a, b = (float(v) for v in value)
     except (TypeError, ValueError):
         return None
-    return (a, b) if math.isfinite(a) and math.isfinite(b) else None
+    return (a, b) if is_finite_number(a) and is_finite_number(b) else None
 
 
 def window_size(window, screen_px=None):
@@ -139,7 +140,7 @@ def window_camera(window, size_px, box):
         scale = float(window['scale'])
     except (KeyError, TypeError, ValueError):
         scale = math.nan
-    if not (math.isfinite(scale) and scale > 0):
+    if not (is_finite_number(scale) and scale > 0):
         scale = min(w / max(x1 - x0, 1e-6), h / max(y1 - y0, 1e-6))
     rotate = _pair(window.get('rotate')) or (0.0, 0.0)
     return Camera(center[0], center[1], min(MAX_SCALE, max(MIN_SCALE, scale)), rotate[1], w, h)

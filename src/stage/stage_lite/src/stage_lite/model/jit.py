@@ -1,0 +1,23 @@
+"""numba's compiler for the model's kernels, or plain Python where numba is missing (no rospy).
+
+python3-numba is a dependency: without it the kernels run as the Python they are written in,
+the same numbers many times slower. Every kernel is compiled with cache=True: numba keeps it
+in its cache (__pycache__ beside the source, or NUMBA_CACHE_DIR) and warmup.py compiles them
+all at ./ws build.
+"""
+import os
+
+# The threads of the parallel ray cast sleep when idle: at real time stageros waits about
+# 100 ms between steps, and OpenMP's default (spinning up to 300 000 times first) would burn
+# part of a core meanwhile. Read by OpenMP when numba first starts its threads.
+os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
+
+try:
+    from numba import njit, prange
+except ImportError:  # pragma: no cover - python3-numba is a dependency
+    prange = range
+
+    def njit(*args, **kwargs):
+        return (lambda f: f) if not args or not callable(args[0]) else args[0]
+
+__all__ = ['njit', 'prange']

@@ -1,0 +1,94 @@
+"""A robot of the world as Stage 4.3 keeps it and stageros reads it (no rospy).
+
+Robot: a position model and the state Stage's ModelPosition keeps between steps (the goal,
+i.e. the last cmd_vel, the velocity, the odometry estimate, the stall), with the blocks of
+its tree the grid draws as it moves; RangerView: what stageros publishes of one of its
+rangers (the first sensor's scan, the tf pose). world_load makes them; the World steps them.
+"""
+import math
+
+import numpy as np
+
+
+class RangerView:
+    """What stageros publishes of a ranger: its first sensor's scan and the tf pose."""
+
+    def __init__(self, model, sensor, robot_height):
+        self.model = model
+        self.sensor = sensor
+        x, y, z, a = model.pose
+        self.pose = (x, y, robot_height + z, a)       # base_link -> base_laser_link
+        self.range_min, self.range_max = sensor.range
+        self.samples = sensor.samples
+        self.fov_rad = sensor.fov
+        self.noise = sensor.noise
+        self.ranges = np.full(self.samples, self.range_max, np.float32)
+        self.intensities = np.zeros(self.samples, np.float32)
+        self.has_data = False       # stageros publishes a ranger after its first update
+        self.next_update_us = model.interval_us
+        self.beam_z = model.ray_origin(sensor)[2]
+
+    @property
+    def angle_min(self):
+        return -self.fov_rad / 2.0
+
+    @property
+    def angle_increment(self):
+        # stageros divides by samples - 1 even when it is 0 (IEEE: inf, or nan for fov 0)
+        if self.samples > 1:
+            return self.fov_rad / (self.samples - 1)
+        return math.inf if self.fov_rad > 0 else math.nan
+
+    def local_angles(self):
+        """The beams' angles in the sensor's frame (a one-beam sensor's: angle_min)."""
+        step = self.fov_rad / (self.samples - 1) if self.samples > 1 else 0.0
+        return self.angle_min + np.arange(self.samples) * step
+
+
+class Robot:
+    """A position model and its Stage state (goal, velocity, estimate, stall)."""
+
+    def __init__(self, index, model, rangers):
+        self.index = index
+        self.model = model
+        self.model_name = model.name
+        self.color_rgb = model.color[:3]
+        self.size = model.geom_size
+        self.origin = model.geom_pose
+        self.rangers = rangers
+        self.drive = model.drive
+        gp = model.global_pose()
+        self.initial_global = gp
+        self.start_pose = (gp[0], gp[1], gp[3])
+        self.goal = (0.0, 0.0, 0.0, 0.0)
+        self.velocity = model.initial_velocity
+        self.est_pose = model.initial_estimate()
+        self.stalled = False
+        self.truth_twist = (0.0, 0.0, 0.0)
+        self.next_update_us = model.interval_us
+        # [(model, its block indices in the grid)] over the robot's tree (itself first) in
+        # drawing order, and those indices in one array (world_load fills both)
+        self.blocks = []
+        self.block_ids = np.zeros(0, np.int64)
+
+    @property
+    def pose(self):
+        """(x, y, yaw): the world pose (ground truth)."""
+        x, y, _, a = self.model.global_pose()
+        return (x, y, a)
+
+    @property
+    def odom_pose(self):
+        x, y, _, a = self.est_pose
+        return (x, y, a)
+
+    @property
+    def command(self):
+        """The velocity Stage applies (odom's twist): vx, vy, wz."""
+        return (self.velocity[0], self.velocity[1], self.velocity[3])
+
+
+def body_row(m):
+    """The model's body pose as the grid kernels take it: (x, y, cos a, sin a)."""
+    x, y, _, a = m.body_pose()
+    return (x, y, math.cos(a), math.sin(a))

@@ -1,0 +1,42 @@
+"""stage_lite.model.warmup leaves no kernel of the model to compile at a stageros's start.
+
+warm() runs in a fresh interpreter; then every kernel Python calls (a numba function no other
+kernel calls) must have been compiled or loaded from numba's cache. A kernel that only other
+kernels call is compiled into them (and shows no signature of its own when they come from
+the cache), so it is covered by its callers.
+"""
+import json
+import subprocess
+import sys
+
+import pytest
+
+pytest.importorskip('numba')
+
+CHECK = '''
+import importlib, inspect, json, pkgutil, re
+import stage_lite.model as model
+from stage_lite.model import warmup
+warmup.warm()
+kernels = {}
+for info in pkgutil.iter_modules(model.__path__):
+    module = importlib.import_module('stage_lite.model.' + info.name)
+    for name, obj in vars(module).items():
+        if getattr(obj, 'py_func', None) is not None and obj.py_func.__module__ == module.__name__:
+            kernels['%s.%s' % (info.name, name)] = obj
+sources = {key: inspect.getsource(k.py_func) for key, k in kernels.items()}
+called = {key for key in kernels for other, text in sources.items() if other != key
+          and re.search(r'\\b%s\\(' % re.escape(key.split('.')[1]), text)}
+print(json.dumps({'kernels': sorted(kernels),
+                  'left': sorted(key for key, k in kernels.items()
+                                 if not k.signatures and key not in called)}))
+'''
+
+
+def test_warm_compiles_every_kernel_python_calls():
+    out = subprocess.run([sys.executable, '-c', CHECK], capture_output=True, text=True,
+                         check=True).stdout
+    result = json.loads(out.strip().splitlines()[-1])
+    assert {'grid.move', 'grid.redraw', 'raytrace.cast_scans', 'raytrace.cast_scans_parallel',
+            'raytrace.trace', 'image._trace'} <= set(result['kernels'])
+    assert result['left'] == [], 'warmup.warm() never calls %s' % result['left']
