@@ -52,29 +52,26 @@ def test_rosout_handler_reads_the_cached_param():
         % rospy_internals.ROSOUT_TOPICS_PARAM)
 
 
-def test_preshutdown_hook_gets_the_reason_before_shutdown():
-    pin(callable(getattr(rospy.core, 'add_preshutdown_hook', None)),
-        'rospy.core.add_preshutdown_hook', 'exists')
-    out = _run('import rospy\n'
-               'from course_common.rospy_internals import add_preshutdown_hook\n'
-               'add_preshutdown_hook(lambda r: print(r, rospy.is_shutdown()))\n'
-               'rospy.signal_shutdown("pinned reason")\n')
-    pin(out == 'pinned reason False', 'rospy.core.add_preshutdown_hook',
-        'calls its hook with the reason before is_shutdown() (got %r)' % out)
+@pytest.mark.parametrize('attribute', ['add_preshutdown_hook', 'is_shutdown_requested'])
+def test_shutdown_attributes_exist(attribute):
+    pin(callable(getattr(rospy.core, attribute, None)), 'rospy.core.' + attribute, 'exists')
 
 
-def test_shutdown_is_requested_while_the_preshutdown_hooks_run():
-    pin(callable(getattr(rospy.core, 'is_shutdown_requested', None)),
-        'rospy.core.is_shutdown_requested', 'exists')
+def test_preshutdown_hooks_get_the_reason_while_shutdown_is_requested():
+    """The hook gets the reason before is_shutdown() turns true; shutdown_requested() is true
+    from the hooks on (rospy closes the topics there), and was not before."""
     out = _run('import rospy\n'
                'from course_common.rospy_internals import add_preshutdown_hook, '
                'shutdown_requested\n'
                'print(shutdown_requested())\n'
-               'add_preshutdown_hook(lambda r: print(shutdown_requested(), rospy.is_shutdown()))\n'
-               'rospy.signal_shutdown("pinned reason")\n'
+               'add_preshutdown_hook(lambda r: print(r, rospy.is_shutdown(), '
+               'shutdown_requested()))\n'
+               'rospy.signal_shutdown("pinned_reason")\n'
                'print(shutdown_requested())\n')
-    pin(out.split() == ['False', 'True', 'False', 'True'], 'rospy.core.is_shutdown_requested',
-        'is true from the pre-shutdown hooks on, before is_shutdown() (got %r)' % out)
+    pin(out.split() == ['False', 'pinned_reason', 'False', 'True', 'True'],
+        'rospy.core.add_preshutdown_hook and is_shutdown_requested',
+        'call the hook with the reason before is_shutdown(), with shutdown requested '
+        '(got %r)' % out)
 
 
 def test_name_mappings_are_the_command_line_remaps():
