@@ -176,9 +176,12 @@ class RobotSensors:
             self._pose = (float(x), float(y), float(theta))
             self._heard['pose' if simulator == TURTLESIM else 'base_pose_ground_truth'] = \
                 time.monotonic()
+            if first:
+                # Under the lock: the scan's thread could otherwise find the robot ready and
+                # log its ready status before this line says which simulator drives it.
+                rospy.loginfo('Robot %d: driven by %s', self._id, simulator)
         if first:
             self._drop_unwanted()
-            rospy.loginfo('Robot %d: driven by %s', self._id, simulator)
         self._maybe_ready()
 
     def _maybe_ready(self):
