@@ -157,8 +157,12 @@ class Probe:
         return changed is not None and time.time() - changed < window_s
 
     def still(self, robot, window_s=0.5):
-        """True when robot has poses but they did not change for window_s seconds."""
-        return self.last_pose(robot) is not None and not self.moving(robot, window_s)
+        """True when robot's poses keep coming (the last received within window_s) and did not
+        change for window_s seconds. Poses that stopped coming prove nothing: the probe, or
+        this process reading its lines, may be behind on a loaded machine."""
+        last = self.last_pose(robot)
+        return last is not None and time.time() - last['t'] < window_s \
+            and not self.moving(robot, window_s)
 
     def stopped(self, robot, window_s=0.5):
         """still, and the simulator applies no speed: the robot stands because it was told to."""

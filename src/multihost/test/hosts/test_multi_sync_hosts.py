@@ -124,14 +124,16 @@ def test_robot_host_cut_and_restored(team, hosts3):
     try:
         wait_for(lambda: all(probe.still(r, still_s) for r in cut_robots), STOP_S,
                  'robots 2-3 (host 3, cable out) to stop')
-        stopped_ms = 1000.0 * (max(probe.last_change(r) for r in cut_robots) - cut)
-        # Throughout the outage: host 3's robots stay still, host 2's keep driving.
+        stopped_at = {r: probe.last_change(r) for r in cut_robots}
+        stopped_ms = 1000.0 * (max(stopped_at.values()) - cut)
+        # Throughout the outage: host 3's robots stay where they stopped, host 2's keep
+        # driving.
         outage_end = time.monotonic() + OUTAGE_S
         while time.monotonic() < outage_end:
             for robot in kept_robots:
                 wait_for(lambda r=robot: probe.moving(r, still_s), 2.0,
                          '%s (host 2) to keep moving during the outage' % robot)
-            assert all(probe.still(r, still_s) for r in cut_robots), \
+            assert {r: probe.last_change(r) for r in cut_robots} == stopped_at, \
                 'a robot of host 3 moved while its cable was out'
             time.sleep(still_s / 2)  # sampling period of the check above, not a wait
     finally:

@@ -39,10 +39,19 @@ def test_lines_that_are_not_events_are_ignored():
     ([(0.0, 0.2), (0.02, 0.2), (0.02, 0.2), (0.02, 0.2)], False, True),   # against a wall
 ])
 def test_stopped_or_stalled_at_rest(points, stopped, stalled):
-    probe = _probe(_poses('robot_0', points, time.time() - 10.0))
+    # the last pose changed 1.3 s ago, the latest came 0.1 s ago
+    probe = _probe(_poses('robot_0', points + [points[-1]] * 12, time.time() - 1.6))
     assert probe.still('robot_0', 1.0)
     assert probe.stopped('robot_0', 1.0) is stopped
     assert probe.stalled('robot_0', 1.0) is stalled
+
+
+def test_poses_that_stopped_coming_are_not_still():
+    """Unchanged, but the last one is 2 s old: the probe (or its reader) may be behind."""
+    probe = _probe(_poses('robot_0', [(0.04, 0.0)] * 5, time.time() - 2.4))
+    assert not probe.moving('robot_0', 1.0)
+    assert not probe.still('robot_0', 1.0)
+    assert not probe.stopped('robot_0', 1.0)
 
 
 def test_a_moving_robot_is_neither_stopped_nor_stalled():
