@@ -4,6 +4,7 @@ import time
 
 import rospy
 from course_common.processes import ChildProcess
+from course_common.testing import rosrun_once
 from geometry_msgs.msg import Twist
 from rosgraph_msgs.msg import Log
 from turtlesim.msg import Pose
@@ -101,9 +102,10 @@ class TeamWatch:
 
 class NodeProcess(ChildProcess):
     """`rosrun multi_sync ARGS`, started at once: course_common's ChildProcess (its lines()
-    as they come; stop() is Ctrl-C, then a kill)."""
+    as they come; stop() is Ctrl-C, then a kill); rosrun looks each executable up once
+    (course_common.testing.rosrun_once)."""
 
     def __init__(self, *args, env=None):
-        super().__init__(['rosrun', 'multi_sync', *args], env=env)
+        super().__init__(rosrun_once(['rosrun', 'multi_sync', *args]), env=env)
         self.start()
 

@@ -10,6 +10,9 @@ from course_common.tcpros_frames import FrameStream
 FRAME = struct.Struct('<II')  # a sequence number and a marker, 8 bytes like a tiny message
 MARKER = 0xC0FFEE
 SEND_DEADLINE_S = 10.0  # generous: sending a few thousand frames takes milliseconds
+# A send() that blocks makes no progress at all; a slow one (a loaded machine: 200000 sends
+# took over 10 s beside the rest of the suite) does. Blocked = no send returned for this long.
+STALL_S = 5.0
 
 
 @pytest.fixture
@@ -63,11 +66,15 @@ def test_a_stalled_reader_loses_whole_frames_and_never_blocks_the_sender(tcp_pai
     results = []
 
     def flood():
-        results.extend(stream.send(writer, FRAME.pack(i, MARKER)) for i in range(200000))
+        for i in range(200000):
+            results.append(stream.send(writer, FRAME.pack(i, MARKER)))
 
     sender = threading.Thread(target=flood, daemon=True)
     sender.start()
-    sender.join(SEND_DEADLINE_S)
+    done = -1
+    while sender.is_alive() and len(results) > done:  # results grows by one per send
+        done = len(results)
+        sender.join(STALL_S)
     assert not sender.is_alive(), 'FrameStream.send blocked on a reader that does not read'
     assert False in results, 'the buffers never filled: the test did not exercise dropping'
 

@@ -25,6 +25,8 @@ from genpy import Time
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
 
+from course_common import testing
+
 COUNT = re.compile(r'^hello world (\d+)$')
 TIME = re.compile(r'^hello world (\d+\.\d+)$')
 
@@ -186,3 +188,24 @@ def test_log_recorder_keeps_a_line_once(monkeypatch):
     log.clear()
     log._cb(_line('/talker', 2, 5, 'hello world 0'))
     assert log.lines() == []
+
+
+@pytest.mark.parametrize('argv', [['python3', '-c', 'pass'], ['rosrun', '--debug', 'rosout'],
+                                  ['rosrun', 'rosout']])
+def test_rosrun_once_leaves_other_command_lines_alone(argv):
+    assert testing.rosrun_once(argv) == argv
+
+
+def test_rosrun_once_runs_the_file_rosrun_finds_and_looks_it_up_once():
+    before = testing._rosrun_executable.cache_info()
+    first = testing.rosrun_once(['rosrun', 'rosout', 'rosout', '__name:=a'])
+    again = testing.rosrun_once(['rosrun', 'rosout', 'rosout'])
+    after = testing._rosrun_executable.cache_info()
+    assert os.path.basename(first[0]) == 'rosout' and os.access(first[0], os.X_OK)
+    assert first == [first[0], '__name:=a'] and again == [first[0]]
+    assert after.hits - before.hits >= 1  # the second start did not run rosrun
+
+
+def test_rosrun_once_names_an_executable_rosrun_cannot_find():
+    with pytest.raises(RuntimeError, match='rosrun rosout no_such_exe: not found'):
+        testing.rosrun_once(['rosrun', 'rosout', 'no_such_exe'])

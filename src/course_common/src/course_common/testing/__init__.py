@@ -1,7 +1,8 @@
 """The tests' and benchmarks' one set of helpers.
 
 Here: the deadlines, wait_for (from course_common.waiting), pin, results_dir,
-check_refused (bad command lines, side by side), and the process helpers tests use
+check_refused (bad command lines, side by side), rosrun_once (a rosrun command line that a
+test runs many times, looked up once), and the process helpers tests use
 (ChildProcess, spawn, Xvfb, free_port, cpu_ticks, rss_mb, from course_common.processes, .xvfb
 and .ports, where tools use them too). Beside it: recorders (topics and /rosout), master
 (queries of the graph, a private roscore), master_calls (a master that counts its calls),
@@ -9,9 +10,11 @@ views (tf checks), x_windows (the windows on an X display, and their close butto
 simulator's own helpers live with it (turtle_lite.testing, stage_lite.testing). Production
 code imports course_common.waiting, .processes, .ports and .xvfb, never this.
 """
+import functools
 import importlib.metadata
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -32,8 +35,8 @@ from course_common.xvfb import Xvfb
 __all__ = ['EVENT_DEADLINE_S', 'POLL_S', 'START_DEADLINE_S', 'ChildProcess',
            'ScratchDirTestCase', 'WaitError', 'Xvfb', 'check_refused', 'cpu_ticks', 'free_port',
            'pin',
-           'consecutive', 'info_texts', 'numbers_in', 'results_dir', 'rospy_version', 'rss_mb',
-           'spawn', 'wait_for']
+           'consecutive', 'info_texts', 'numbers_in', 'results_dir', 'rosrun_once',
+           'rospy_version', 'rss_mb', 'spawn', 'wait_for']
 
 # Deadlines are generous: the tests run on a loaded 2-core machine, and a deadline only costs
 # time when something is wrong.
@@ -84,12 +87,40 @@ def consecutive(values):
     return bool(values) and list(values) == list(range(values[0], values[0] + len(values)))
 
 
+@functools.cache
+def _rosrun_executable(package, executable, package_path):
+    """The file `rosrun package executable` runs, as rosrun itself finds it (its --prefix
+    prints the command line instead of running it); package_path keys the cache."""
+    done = subprocess.run(['rosrun', '--prefix', 'printf %s\\n', package, executable],
+                          capture_output=True, text=True, timeout=START_DEADLINE_S, check=False)
+    found = done.stdout.splitlines()
+    if done.returncode != 0 or not found or not os.access(found[0], os.X_OK):
+        raise RuntimeError('rosrun %s %s: not found (%s)' % (package, executable,
+                                                           (done.stdout + done.stderr).strip()))
+    return found[0]
+
+
+def rosrun_once(argv):
+    """argv as given, or for ``['rosrun', PACKAGE, EXECUTABLE, ARGS...]`` the file rosrun runs
+    followed by ARGS: rosrun looks the executable up once per test process, not at every
+    start. The process is the same (rosrun execs that file, with the same environment);
+    rosrun's lookup costs about 0.7 s of CPU a call (Debian's runs catkin_find twice), which
+    tests that start one executable tens of times paid each time."""
+    argv = list(argv)
+    if len(argv) < 3 or argv[0] != 'rosrun' or argv[1].startswith('-'):
+        return argv
+    return [_rosrun_executable(argv[1], argv[2], os.environ.get('ROS_PACKAGE_PATH', ''))] \
+        + argv[3:]
+
+
 def check_refused(test, cases, timeout_s=START_DEADLINE_S, workers=REFUSAL_WORKERS):
     """Runs the argv of each (argv, expected text) of cases to its end, workers at a time, and
     checks each in a subTest of the unittest.TestCase test: exit status 1, the expected text
-    in its output, no Traceback (a refusal a user can act on, not a crash)."""
+    in its output, no Traceback (a refusal a user can act on, not a crash). A rosrun command
+    line is looked up once per executable (rosrun_once)."""
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        results = list(pool.map(lambda case: run_to_exit(case[0], timeout_s), cases))
+        results = list(pool.map(lambda case: run_to_exit(rosrun_once(case[0]), timeout_s),
+                                cases))
     for (argv, expected), (code, output) in zip(cases, results, strict=True):
         with test.subTest(argv=argv):
             test.assertEqual(code, 1, output)
