@@ -15,8 +15,12 @@ BUILD_DIR=${WS_BUILD_DIR:-build}
 DEVEL_DIR=${WS_DEVEL_DIR:-devel}
 RESULTS_DIR="$ROOT/$BUILD_DIR/ws-results"
 LINT_VENV="$ROOT/$BUILD_DIR/lint-venv"
-# How many rostest files (and the multi-host tests) ./ws test runs side by side.
-TEST_JOBS=${WS_TEST_JOBS:-2}
+# How many test jobs (.test files, the unit, multi-host and browser tests) ./ws test runs side
+# by side: one more than the cores, as most of a rostest's time is spent waiting on its nodes,
+# but at most 4 (on 2 cores, side by side: 2 jobs 733 s, 3 jobs 630 s, 4 jobs 619 s, and the
+# load of 4 made timing flakes).
+CORES=$(nproc 2>/dev/null || echo 1)
+TEST_JOBS=${WS_TEST_JOBS:-$((CORES + 1 > 4 ? 4 : CORES + 1))}
 
 usage() {
   cat <<EOF
@@ -24,15 +28,16 @@ usage: ./ws COMMAND [ARGS]
   demo [ARGS]        deps, build, then the demos: the convoy with its autopilot leader (ARGS go
                      to it), then the synchronisation lesson on Stage (build/demo/stage/)
   test               deps, build, lint, then the unit, integration, multi-host and browser
-                     tests side by side (WS_TEST_JOBS at a time, 2; longest first, by their
-                     last run's times in build/test-durations), one summary line
+                     tests side by side (WS_TEST_JOBS at a time: the cores + 1, at most 4;
+                     longest first, by their last run's times in build/test-durations), one
+                     summary line
   deps               install the missing Debian packages of tools/debian-packages.txt
   build [ARGS]       catkin_make the workspace (ARGS go to catkin_make, e.g. install; run_tests
                      runs every unit test and rostest the catkin way, see src/course_pytest)
   lint               catkin_lint, tests registered with catkin, ruff, hadolint, actionlint
   unit [ARGS]        pytest on every package's test/unit (ARGS go to pytest)
   integration [F..]  rostest every test/*.test of every package (or just the files F),
-                     WS_TEST_JOBS at a time
+                     WS_TEST_JOBS at a time, longest first
   multihost [ARGS]   the multi-host tests (test/hosts/, pytest; root and ip netns, else skipped)
   browser [ARGS]     the browser tests (test/browser/, pytest): the desktop in headless Chromium,
                      against ./ws desktop, or an image with DESKTOP_TEST_IMAGE=NAME
@@ -241,9 +246,8 @@ record_duration() {
 }
 
 # Runs the jobs TEST_JOBS at a time, in the order given, each in the background with its output
-# in its log; prints one line per job as it ends (the log's tail if it failed). Most of a
-# rostest's time is spent waiting on its nodes, so two share two cores well. Non-zero if any
-# job failed.
+# in its log; prints one line per job as it ends (the log's tail if it failed). Non-zero if
+# any job failed.
 run_test_jobs() {
   source_devel
   local_ros_network
