@@ -24,6 +24,10 @@ from course_common.xvfb import Xvfb
 
 SCREEN = (1024, 800)
 START_DEADLINE_S = 60.0  # rviz with software GL on a loaded 2-core machine
+# Debian's rviz 1.14.19 now and then aborts as it starts ("free(): invalid next size", once in
+# some 35 starts beside the whole suite): a death by a signal before the view is checked is
+# tried once more, within the same deadline; a second one, or an exit, fails.
+CRASH_RESTARTS = 1
 
 
 class RvizOnXvfb:
@@ -39,14 +43,17 @@ class RvizOnXvfb:
         self.node_name = '/' + node_name.lstrip('/')
         self._xvfb = Xvfb(SCREEN)
         self.display = self._xvfb.display
-        self._rviz = ChildProcess(['rviz', '-d', config_path, '__name:=' + node_name.lstrip('/')],
-                                  env={'DISPLAY': self.display, 'LIBGL_ALWAYS_SOFTWARE': '1'},
-                                  stop_timeout_s=10.0)
+        self._argv = ['rviz', '-d', config_path, '__name:=' + node_name.lstrip('/')]
+        self.restarts = 0
         try:
-            self._rviz.start()
+            self._rviz = self._start_rviz()
         except OSError:
             self._xvfb.close()
             raise
+
+    def _start_rviz(self):
+        return ChildProcess(self._argv, stop_timeout_s=10.0,
+                            env={'DISPLAY': self.display, 'LIBGL_ALWAYS_SOFTWARE': '1'}).start()
 
     def __enter__(self):
         return self
@@ -79,8 +86,14 @@ class RvizOnXvfb:
 
     def _alive_and(self, check):
         if not self.running():
-            raise AssertionError('rviz exited (code %s):\n%s' % (self._rviz.returncode,
-                                                                  self.log()[-2000:]))
+            code = self._rviz.returncode
+            if code is not None and code < 0 and self.restarts < CRASH_RESTARTS:
+                # rviz's own crash as it starts (a signal, not an exit of its own): once more.
+                print('rviz died of signal %d; started again:\n%s' % (-code, self.log()[-2000:]))
+                self.restarts += 1
+                self._rviz = self._start_rviz()
+                return None
+            raise AssertionError('rviz exited (code %s):\n%s' % (code, self.log()[-2000:]))
         return check()
 
     def wait_subscribed(self, timeout_s=START_DEADLINE_S):
