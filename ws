@@ -157,6 +157,7 @@ cmd_unit() {
   mkdir -p "$RESULTS_DIR"
   local status=0 dirs
   mapfile -t dirs < <(test_dirs unit)
+  dirs+=(tools/test)  # the workspace's own tools (the test summary)
   /usr/bin/python3 -m pytest -q -p no:cacheprovider --junitxml="$RESULTS_DIR/unit.xml" \
     "${dirs[@]}" "$@" || status=$?
   # 5 = no tests collected: the summary reports that as a failure, not pytest's exit code.

@@ -7,6 +7,8 @@ failing only when the node itself failed (crashed, timed out, wrote no results).
 file counts its rosunit cases, plus the wrapper's failures. Anything expected but missing, and
 a failed non-test step (lint), count as failures, so a broken run can never look green.
 The closing line names the system it ran on (from /etc/os-release), so a CI log says which.
+Each failure is printed with the end of its message just above that line, so the tail of a log
+(often all a CI page keeps) says why a test failed, not only which.
 """
 import argparse
 import pathlib
@@ -14,6 +16,7 @@ import shlex
 import sys
 import xml.etree.ElementTree as ET
 
+WHY_LINES = 6  # the end of a failure's message: the assertion and its text, not the stack
 
 class Tally:
     """Passed/failed/skipped counts and the names of what failed."""
@@ -34,8 +37,11 @@ class Tally:
             self.fail('%s: unreadable result file (%s)' % (label, err))
             return
         for case in root.iter('testcase'):
-            if case.find('failure') is not None or case.find('error') is not None:
-                self.fail('%s: %s.%s' % (label, case.get('classname', ''), case.get('name', '')))
+            failure = case.find('failure')
+            failure = case.find('error') if failure is None else failure
+            if failure is not None:
+                self.fail('%s: %s.%s' % (label, case.get('classname', ''), case.get('name', '')),
+                          failure_text(failure))
             elif failures_only:
                 continue
             elif case.find('skipped') is not None:
@@ -45,9 +51,17 @@ class Tally:
             else:
                 self.passed += 1
 
-    def fail(self, problem):
+    def fail(self, problem, why=''):
         self.failed += 1
-        self.problems.append(problem)
+        self.problems.append((problem, why))
+
+
+def failure_text(element):
+    """The last WHY_LINES non-blank lines of a JUnit failure or error: its message attribute
+    and its text (pytest puts the traceback in the text, rosunit the message there too)."""
+    text = '\n'.join(part for part in (element.get('message', ''), element.text or '') if part)
+    lines = [line.rstrip() for line in text.splitlines() if line.strip()]
+    return '\n'.join(lines[-WHY_LINES:])
 
 
 def count_rostest_dir(tally, directory, label):
@@ -111,8 +125,10 @@ def main():
 
     for (label, reason), count in sorted(tally.skip_reasons.items()):
         print('SKIPPED %s: %d test%s: %s' % (label, count, '' if count == 1 else 's', reason))
-    for problem in tally.problems:
+    for problem, why in tally.problems:
         print('FAILED ' + problem)
+        for line in why.splitlines():
+            print('    ' + line)
     if tally.passed + tally.failed == 0:
         tally.fail('no test ran')
         print('FAILED no test ran')
