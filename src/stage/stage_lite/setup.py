@@ -4,5 +4,5 @@ from setuptools import setup
 
 setup(**generate_distutils_setup(
     packages=['stage_lite', 'stage_lite.model', 'stage_lite.node', 'stage_lite.view',
-              'stage_lite.testing'],
+              'stage_lite.controllers', 'stage_lite.testing'],
     package_dir={'': 'src'}))

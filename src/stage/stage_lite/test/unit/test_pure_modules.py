@@ -1,8 +1,9 @@
 """stage_lite's pure modules import no rospy: each is imported alone in a fresh interpreter,
 which then must not have rospy (nor genpy, rosgraph) loaded.
 
-Pure are whole folders, found on disk: every module of model/, view/ (but the Tk window,
-gui, which logs through rospy) and testing/, and every module of node/ but its ROS glue
+Pure are whole folders, found on disk: every module of model/, controllers/ (Stage's own
+controllers), view/ (but the Tk window, gui, which logs through rospy) and testing/, and
+every module of node/ but its ROS glue
 (NODE_GLUE), so that a new module is checked without being listed anywhere.
 """
 import os
@@ -30,14 +31,15 @@ def modules(folder, but=()):
                   if name.endswith('.py') and name != '__init__.py' and name[:-3] not in but)
 
 
-PURE = (modules('model') + modules('view', but={VIEW_WINDOW})
+PURE = (modules('model') + modules('controllers') + modules('view', but={VIEW_WINDOW})
         + modules('node', but=NODE_GLUE) + modules('testing'))
 
 
 def test_the_folders_are_found_and_the_exceptions_exist():
     assert {'stage_lite.model.world', 'stage_lite.model.grid', 'stage_lite.model.worldfile',
             'stage_lite.view.world_picture', 'stage_lite.view.camera',
-            'stage_lite.node.wire', 'stage_lite.testing.golden'} <= set(PURE)
+            'stage_lite.node.wire', 'stage_lite.testing.golden',
+            'stage_lite.controllers.wander', 'stage_lite.node.stage_program'} <= set(PURE)
     for name in NODE_GLUE:
         assert os.path.isfile(os.path.join(PACKAGE, 'node', name + '.py')), name
     assert os.path.isfile(os.path.join(PACKAGE, 'view', VIEW_WINDOW + '.py'))

@@ -214,7 +214,7 @@ def test_missing_world(tmp_path):
     ('model( color "octarine" )', 'unknown colour "octarine"; Stage uses red'),
     ('position( drive "tank" )', 'invalid drive "tank"'),
     ('position( localization "slam" )', 'unknown localization "slam"'),
-    ('position( ctrl "wander" )', 'ctrl wander: controller plugins are not run here'),
+    ('threads 0', 'threads set to <1. Forcing to 1'),
     ('camera( )', 'camera models are not simulated here'),
     ('model( laser_return 1 )', 'property laser_return is defined but not used'),
 ])

@@ -107,6 +107,10 @@ def read_colour(wf, e, default):
 class Model:
     """A Stage model: the tree, the pose, the geometry and the body (blocks)."""
 
+    #: Stage runs a thread-safe model's updates in a worker thread (rangers, fiducial
+    #: finders, bumpers): its queue is drawn from random() when it starts
+    THREAD_SAFE_KINDS = ('ranger', 'fiducial', 'bumper')
+
     def __init__(self, world_dir, parent, kind, index, entity, counts):
         self.world_dir = world_dir
         self.parent = parent
@@ -125,8 +129,10 @@ class Model:
         self.obstacle_return = True
         self.ranger_return = 1.0
         self.interval_us = DEFAULT_INTERVAL_US
-        self.ctrl = []
+        self.ctrl = []           # [(the ctrl string, world file, line)]
         self.bitmap = None
+        self.flags = []          # the flags it carries (Stage's flag_list), oldest first
+        self.used = False        # taken by GetUnusedModelOfType
         scope = parent.child_counts if parent else counts
         n = scope.get(kind, 0)
         scope[kind] = n + 1
@@ -148,6 +154,10 @@ class Model:
 
     def clear_blocks(self):
         self.blocks = []
+
+    @property
+    def thread_safe(self):
+        return self.kind in self.THREAD_SAFE_KINDS
 
     @property
     def root(self):
@@ -196,6 +206,8 @@ class Model:
             if wf.exists(e, name):
                 wf.read_string(e, name, '')
         self.name = wf.read_string(e, 'name', '')
+        if self.name:
+            self.token = self.name    # Stage's token: its children's names start with it
         # GuiState::Load: a heading mark in the window (drawn by the node's window only)
         self.gui_nose = wf.read_int(e, 'gui_nose', 0) != 0
         pose = read_pose(wf, e, 'origin', self.geom_pose)
@@ -219,9 +231,9 @@ class Model:
         self.ranger_return = wf.read_float(e, 'ranger_return', self.ranger_return)
         ctrl = wf.read_values(e, 'ctrl')
         if ctrl is not None:
-            self.ctrl = ctrl
-            wf.warn(wf.prop(e, 'ctrl'), 'ctrl %s: controller plugins are not run here; the model'
-                    ' is loaded and nothing drives it' % ' '.join(self.ctrl))
+            # each value is one controller, "name args" (controllers.py starts them)
+            p = wf.prop(e, 'ctrl')
+            self.ctrl = [(value, p.path, p.line) for value in ctrl]
         interval_ms = wf.read_int(e, 'update_interval', self.interval_us // 1000)
         self.interval_us = 1000 * interval_ms
         if self.interval_us <= 0:

@@ -25,6 +25,8 @@ class Position(Model):
                                 (-math.pi / 2.0, math.pi / 2.0)]
         self.initial_velocity = (0.0, 0.0, 0.0, 0.0)
         self.integration_error = None
+        self.acceleration_bounds = [(-1.0, 1.0), (-1.0, 1.0), (-1.0, 1.0),
+                                    (-math.pi / 2.0, math.pi / 2.0)]
 
     def load(self, wf, rng):
         super().load(wf, rng)
@@ -56,7 +58,10 @@ class Position(Model):
                         ' Stage keeps "gps"' % loc)
             else:
                 self.localization = loc
-        wf.read_tuple(e, 'acceleration_bounds', 'llllllaa')
+        ab = wf.read_tuple(e, 'acceleration_bounds', 'llllllaa')
+        if ab is not None:
+            self.acceleration_bounds = [(ab[0], ab[1]), (ab[2], ab[3]), (ab[4], ab[5]),
+                                        (ab[6], ab[7])]
         vb = wf.read_tuple(e, 'velocity_bounds', 'llllllaa')
         if vb is not None:
             self.velocity_bounds = [(vb[0], vb[1]), (vb[2], vb[3]), (vb[4], vb[5]),

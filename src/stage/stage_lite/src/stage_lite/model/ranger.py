@@ -24,6 +24,9 @@ class Sensor:
         self.samples = 1
         self.noise = (0.0, 0.0, 0.0)
         self.where = None
+        # what its last update read (the world points these into its beam arrays)
+        self.ranges = None
+        self.intensities = None
 
     def load(self, wf, e):
         self.where = (wf.entities[e].path, wf.entities[e].line)

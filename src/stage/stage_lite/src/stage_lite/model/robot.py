@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 
+from .pose import stage_normalize as _normalize
+
 
 class RangerView:
     """What stageros publishes of a ranger: its first sensor's scan and the tf pose."""
@@ -55,12 +57,14 @@ class Robot:
         self.color_rgb = model.color[:3]
         self.size = model.geom_size
         self.origin = model.geom_pose
-        self.rangers = rangers
+        self.rangers = rangers         # what stageros publishes: each ranger's first sensor
+        self.ranger_models = []        # the rangers it carries that have sensors (all cast)
         self.drive = model.drive
         gp = model.global_pose()
         self.initial_global = gp
         self.start_pose = (gp[0], gp[1], gp[3])
         self.goal = (0.0, 0.0, 0.0, 0.0)
+        self.control_mode = 'velocity'     # Stage's CONTROL_VELOCITY, _ACCELERATION, _POSITION
         self.velocity = model.initial_velocity
         self.est_pose = model.initial_estimate()
         self.stalled = False
@@ -70,6 +74,51 @@ class Robot:
         # drawing order, and those indices in one array (world_load fills both)
         self.blocks = []
         self.block_ids = np.zeros(0, np.int64)
+
+    def commanded_velocity(self, dt):
+        """ModelPosition::Update's velocity from the goal, before velocity_bounds: [x, y, z,
+        a]. Velocity control (cmd_vel, SetSpeed) by drive; acceleration control
+        (SetAcceleration) adds the bounded goal * dt to the velocity; position control
+        (GoTo) steers toward the goal pose from the estimate, as Stage's simple law does."""
+        m = self.model
+        gx, gy, gz, ga = self.goal
+        if self.control_mode == 'acceleration':
+            (ax0, ax1), (ay0, ay1), _, (aa0, aa1) = m.acceleration_bounds
+            gx = min(max(gx, ax0), ax1)
+            gy = min(max(gy, ay0), ay1)
+            ga = min(max(ga, aa0), aa1)
+            vx, vy, vz, va = self.velocity
+            if m.drive == 'omni':
+                return [vx + gx * dt, vy + gy * dt, vz, va + ga * dt]
+            if m.drive == 'car':
+                return [vx, vy, vz, va]   # Stage: "car drive not supported in acceleration"
+            return [vx + gx * dt, 0.0, vz, va + ga * dt]
+        if self.control_mode == 'position':
+            return self._toward_goal()
+        if m.drive == 'omni':
+            return [gx, gy, 0.0, ga]
+        if m.drive == 'car':
+            return [gx * math.cos(ga), 0.0, 0.0, gx * math.sin(ga) / m.wheelbase]
+        return [gx, 0.0, 0.0, ga]
+
+    def _toward_goal(self):
+        """CONTROL_POSITION: speed limits 0.4 m/s and 1 rad/s, hard-coded in Stage; its
+        turn is max(error, -1) (Stage's min is overwritten: kept)."""
+        gx, gy, _, ga = self.goal
+        ex, ey, _, ea = self.est_pose
+        x_err, y_err = gx - ex, gy - ey
+        a_err = _normalize(ga - ea)
+        if self.model.drive == 'omni':
+            return [min(x_err, 0.4), min(y_err, 0.4), 0.0, min(a_err, 1.0)]
+        vx = 0.0
+        if abs(x_err) < 0.02 and abs(y_err) < 0.02:
+            va = max(a_err, -1.0)
+        else:
+            a_err = _normalize(math.atan2(y_err, x_err) - ea)
+            va = max(a_err, -1.0)
+            if abs(a_err) < math.pi / 16:
+                vx = min(math.hypot(y_err, x_err), 0.4)
+        return [vx, 0.0, 0.0, va]
 
     @property
     def pose(self):

@@ -5,8 +5,9 @@ numba compiles the model's kernels (jit.py) at their first call and keeps them i
 (__pycache__ beside the sources, or NUMBA_CACHE_DIR); a stageros that finds them there
 starts in a fraction of a second instead of a few seconds. A small world with a floor plan,
 a body, a robot that moves into it, two lasers whose rays numba's threads share and one
-whose few rays are cast in the calling thread calls every kernel with the argument types
-stageros uses (test_stage_warmup.py checks that none is left out).
+whose few rays are cast in the calling thread (with angular noise, and Stage's lasernoise
+controller on it) calls every kernel with the argument types stageros uses
+(test_stage_warmup.py checks that none is left out).
 """
 import os
 import sys
@@ -16,7 +17,8 @@ import time
 # lasers with enough beams for the threads too (space.PARALLEL_RAYS), and one with a few
 WORLD = '''resolution 0.02
 define laser ranger ( sensor( range [ 0 5 ] fov 180 samples %d ) )
-define short_laser ranger ( sensor( range [ 0 5 ] fov 180 samples 5 ) )
+define short_laser ranger ( sensor( range [ 0 5 ] fov 180 samples 5 noise [ 0.01 0.01 1 ] )
+                           ctrl "lasernoise" )
 model( bitmap "plan.pgm" size [ 2 2 0.5 ] pose [ 0 0 0 10 ] )
 model( pose [ 0.6 0 0 0 ] size [ 0.1 0.3 0.5 ] )
 position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) )

@@ -1,31 +1,44 @@
 """The simulated world as Stage 4.3 and stageros 1.8.0 run it (no rospy).
 
-Loading (World::Load and its post-load hook) is world_load's; the World runs what it loaded:
-the commands, the step, reset, the rays, and the floor for pictures and maps.
+Loading (World::Load and its post-load hook) is world_load's; the controllers named by the
+models' `ctrl` are started by controllers.py (their Init, in model order); the World runs
+what it loaded: the subscriptions, the commands, the step, reset, the rays, and the floor for
+pictures and maps.
 
-One step (World::Update, as stageros drives it), sim time first advanced by interval_sim:
-1. each position model due (every update_interval) turns its goal (the last cmd_vel) into
-   its velocity: clamped to velocity_bounds, `car` steering converted; and updates its
-   estimate: the world pose before this step's move (`gps`), or the velocity integrated
-   with its odom_error (`odom`, from 0 0 0);
-2. each position model, in file order, moves by velocity * interval (the translation turned
-   by the OLD heading); its body is drawn into layer (updates % 2) at the new pose; if it
-   then overlaps an obstacle of another model in that layer whose height range meets its
-   own, the move is undone and the robot is stalled;
-3. each ranger due casts its rays from its robot's pose after the move, through layer
-   ((updates + 1) % 2): the bodies as drawn in the previous step
-   (STAGE_RAYS_READ_LAST_LAYER; in Stage the rangers run in a worker thread beside the moves);
-4. stageros publishes: odom = the estimate and the velocity, ground truth = the world pose.
+A model updates only while subscribed (scheduler.py): stageros subscribes every robot and the
+rangers it carries (World(stageros=True), the default), Stage's own `stage` program nothing
+but what the controllers subscribe. One step (World::Update), sim time first advanced by
+interval_sim:
+1. queue 0's due models, in the order Stage's event queue gives them: each position model
+   turns its goal (the last cmd_vel or controller command) into its velocity (velocity,
+   acceleration or position control; clamped to velocity_bounds, `car` steering converted)
+   and updates its estimate: the world pose before this step's move (`gps`), or the
+   velocity integrated with its odom_error (`odom`, from 0 0 0);
+2. each subscribed position model, in file order, moves by velocity * interval (the
+   translation turned by the OLD heading); its body is drawn into layer (updates % 2) at the
+   new pose; if it then overlaps an obstacle of another model in that layer whose height
+   range meets its own, the move is undone and the robot is stalled;
+3. the workers' due models, queue by queue: each ranger casts every sensor's rays from its
+   robot's pose after the move, through layer ((updates + 1) % 2): the bodies as drawn in
+   the previous step (STAGE_RAYS_READ_LAST_LAYER; in Stage the rangers run in worker threads
+   beside the moves), then draws its noise from random() beam by beam (noise.py);
+4. the update callbacks of every model that updated (the controllers), queue by queue, then
+   the world's callbacks;
+5. stageros publishes: odom = the estimate and the velocity, ground truth = the world pose.
 """
 import math
 import os
 
 import numpy as np
 
-from . import floor, grid, world_load
+from . import controllers, floor, grid, world_load
+from .glibc_random import Rand48, Random
+from .noise import RangerNoise
 from .pose import pose_add, stage_normalize
 from .ranger import Ranger
 from .robot import body_row
+from .scheduler import CB_UPDATE, Scheduler
+from .stage_api import api_of
 from .worldfile import WorldError
 
 __all__ = ['World', 'WorldError', 'load_world']
@@ -34,9 +47,14 @@ __all__ = ['World', 'WorldError', 'load_world']
 class World:
     """A loaded world. Use load_world()."""
 
-    def __init__(self, path, seed=None):
+    def __init__(self, path, seed=None, stageros=True, ctrlargs=''):
+        """seed: random()'s srandom and drand48's srand48 (default: an unseeded process's,
+        srandom(1) and glibc's zero drand48 state), and the load-time draws' generator;
+        stageros: subscribe every robot and its rangers as stageros does (else only what
+        the controllers subscribe, as Stage's `stage`); ctrlargs: `stage -a`'s argument
+        string, World::ctrlargs, given to every controller."""
         self.path = path
-        # one generator for what loading draws (random colours, odometry errors), then noise
+        # one generator for what loading draws (random colours, odometry errors)
         self._rng = np.random.default_rng(seed)
         loaded = world_load.load(path, self._rng)
         self.resolution_m = loaded.resolution_m
@@ -46,6 +64,10 @@ class World:
         self.quit_time_s = loaded.quit_time_s
         self.speedup = loaded.speedup
         self.window = loaded.window
+        self.threads = loaded.threads
+        self.paused = loaded.paused
+        self.show_clock = loaded.show_clock
+        self.show_clock_interval = loaded.show_clock_interval
         self.models = loaded.models
         self.robots = loaded.robots
         self.space = loaded.space
@@ -56,7 +78,45 @@ class World:
         self._occupancy = None
         self.sim_time_us = 0
         self.updates = 0
+        self.seed = seed
+        self.random = Random(1 if seed is None else seed)
+        self.rand48 = Rand48(seed)
+        self.noise = RangerNoise(self.random)
+        self.scheduler = Scheduler(self.threads, self.random)
+        self.ctrlargs = ctrlargs
+        self.log = controllers.default_log     # run-time errors of controllers; a node's own
+        self._robot_of = {r.model: r for r in self.robots}
         self._prepare_rays()
+        controllers.start(self)
+        if stageros:
+            self.subscribe_stageros()
+
+    def subscribe_stageros(self):
+        """stageros's SubscribeModels: each robot in order, then the rangers it carries."""
+        for r in self.robots:
+            self.subscribe(r.model)
+            for v in r.rangers:
+                self.subscribe(v.model)
+
+    def subscribe(self, model):
+        """Model::Subscribe (a controller's, or stageros's)."""
+        self.scheduler.subscribe(model, self.sim_time_us)
+
+    def unsubscribe(self, model):
+        """Model::Unsubscribe; a position model's last one stops it (goal and velocity 0)."""
+        if self.scheduler.unsubscribe(model) and model in self._robot_of:
+            r = self._robot_of[model]
+            r.goal = (0.0, 0.0, 0.0, 0.0)
+            r.control_mode = 'velocity'
+            r.velocity = (0.0, 0.0, 0.0, 0.0)
+
+    def robot_of(self, model):
+        """The Robot of a position model (None for other models)."""
+        return self._robot_of.get(model)
+
+    def handle(self, model):
+        """The model as a controller sees it (stage_api)."""
+        return api_of(self, model)
 
     # ---- the interface -------------------------------------------------------------------
     def set_command(self, i, vx, vy, wz):
@@ -65,11 +125,13 @@ class World:
         vx, vy, wz = (finite_float(name, v)
                       for name, v in (('linear.x', vx), ('linear.y', vy), ('angular.z', wz)))
         self.robots[i].goal = (vx, vy, 0.0, wz)
+        self.robots[i].control_mode = 'velocity'
 
     def stop_all(self):
         """stageros's watchdog: SetSpeed(0, 0, 0) on every robot."""
         for r in self.robots:
             r.goal = (0.0, 0.0, 0.0, 0.0)
+            r.control_mode = 'velocity'
 
     def reset(self):
         """stageros's reset_positions: every robot back to its initial pose, stall cleared
@@ -87,34 +149,47 @@ class World:
         self.sim_time_us += self.interval_us
         now = self.sim_time_us
         dt = self.interval_us / 1e6
-        for r in self.robots:
-            if r.next_update_us <= now:
-                self._update_position(r, dt)
-                r.next_update_us = now + r.model.interval_us
+        scheduler = self.scheduler
+        updated = [scheduler.due(0, now)]
+        for m in updated[0]:
+            r = self._robot_of.get(m)
+            if r is not None:
+                self._update_position(r, dt, scheduler.subscribed(m))
         layer = self.updates % 2
         for r in self.robots:
             old = r.pose
-            self._move(r, dt, layer)
+            if scheduler.subscribed(r.model):     # Stage's active_velocity
+                self._move(r, dt, layer)
             new = r.pose
             r.truth_twist = ((new[0] - old[0]) / dt, (new[1] - old[1]) / dt,
                              stage_normalize(new[2] - old[2]) / dt)
-        self._cast_rays(now, (self.updates + 1) % 2)
+        for queue in range(1, self.threads + 1):
+            updated.append(scheduler.due(queue, now))
+        rangers = [m for models in updated for m in models if m in self._sensor_ids]
+        if rangers:
+            self.cast_rays([k for g in rangers for k in self._sensor_ids[g]],
+                           (self.updates + 1) % 2)
+        for models in updated:
+            for m in models:
+                if scheduler.has_callbacks(m, CB_UPDATE):
+                    scheduler.call(m, CB_UPDATE)
+        scheduler.call_world(self)
+        if rangers:
+            self._refresh_views(rangers)    # what stageros then reads, callbacks' changes in
         self.updates += 1
 
     # ---- Stage's position model ------------------------------------------------------------
-    def _update_position(self, r, dt):
-        """ModelPosition::Update in velocity mode."""
+    def _update_position(self, r, dt, subscribed=True):
+        """ModelPosition::Update: the goal turned into the velocity (only while subscribed:
+        a model nobody subscribes keeps its velocity), then the estimate."""
         m = r.model
-        gx, gy, gz, ga = r.goal
-        if m.drive == 'omni':
-            vel = [gx, gy, 0.0, ga]
-        elif m.drive == 'car':
-            vel = [gx * math.cos(ga), 0.0, 0.0, gx * math.sin(ga) / m.wheelbase]
+        if subscribed:
+            vel = r.commanded_velocity(dt)
+            for k, (lo, hi) in enumerate(m.velocity_bounds):
+                vel[k] = lo if vel[k] < lo else (hi if vel[k] > hi else vel[k])
+            r.velocity = tuple(vel)
         else:
-            vel = [gx, 0.0, 0.0, ga]
-        for k, (lo, hi) in enumerate(m.velocity_bounds):
-            vel[k] = lo if vel[k] < lo else (hi if vel[k] > hi else vel[k])
-        r.velocity = tuple(vel)
+            vel = [0.0, 0.0, 0.0, 0.0]
         if m.localization == 'gps':
             r.est_pose = m.global_pose()
         else:
@@ -162,57 +237,129 @@ class World:
 
     # ---- rays --------------------------------------------------------------------------
     def _prepare_rays(self):
-        """Every ranger of every robot, in order, and their tables for a step's cast."""
-        views = [(r, v) for r in self.robots for v in r.rangers]
-        self._views = views
-        self._rays = self._ray_tables(range(len(views)))
+        """Every sensor of every ranger the robots carry, in order, the tables of a cast of
+        them all, and the beam arrays their readings live in (each sensor's `ranges` and
+        `intensities` are views into them)."""
+        self._sensors = [(g, s) for r in self.robots for g in r.ranger_models
+                         for s in g.sensors]
+        self._sensor_ids = {}
+        for k, (g, _) in enumerate(self._sensors):
+            self._sensor_ids.setdefault(g, []).append(k)
+        self._all_sensors = list(range(len(self._sensors)))
+        self._rays = self._ray_tables(self._all_sensors)
+        offsets = self._rays['offsets']
+        self._beam_ranges = np.zeros(int(offsets[-1]), np.float64)
+        self._beam_intensities = np.zeros(int(offsets[-1]), np.float64)
+        for k, (_, s) in enumerate(self._sensors):
+            s.ranges = self._beam_ranges[offsets[k]:offsets[k + 1]]
+            s.ranges[:] = s.range[1]
+            s.intensities = self._beam_intensities[offsets[k]:offsets[k + 1]]
+        self._views_of = {v.model: v for r in self.robots for v in r.rangers}
+        self._noise = dict(
+            rmax=np.array([s.range[1] for _, s in self._sensors], np.float64),
+            prop=np.array([s.noise[1] for _, s in self._sensors], np.float64),
+            const=np.array([s.noise[0] for _, s in self._sensors], np.float64),
+            angular=np.array([s.noise[2] != 0.0 for _, s in self._sensors], np.bool_))
 
     def _ray_tables(self, due):
-        """The per-sensor tables of the rangers `due` (indices into _views) for Space.cast."""
-        views = [self._views[k][1] for k in due]
-        counts = np.array([v.samples for v in views], np.int64)
+        """The per-sensor tables of the sensors `due` (indices into _sensors) for
+        Space.cast."""
+        sensors = [self._sensors[k] for k in due]
+        counts = np.array([s.samples for _, s in sensors], np.int64)
         return dict(
             offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
-            sensor=np.repeat(np.arange(len(views), dtype=np.int64), counts),
-            incr=np.array([Ranger.sample_increment(v.sensor) for v in views], np.float64),
-            rmax=np.array([v.range_max for v in views], np.float64),
-            ray_class=np.array([self._ray_zs.index(v.beam_z) for v in views], np.int64),
-            root=np.array([v.model.root.index for v in views], np.int64),
-            origins=np.empty((len(views), 4), np.float64))
+            sensor=np.repeat(np.arange(len(sensors), dtype=np.int64), counts),
+            incr=np.array([Ranger.sample_increment(s) for _, s in sensors], np.float64),
+            rmax=np.array([s.range[1] for _, s in sensors], np.float64),
+            ray_class=np.array([self._ray_zs.index(g.ray_origin(s)[2]) for g, s in sensors],
+                               np.int64),
+            root=np.array([g.root.index for g, _ in sensors], np.int64),
+            origins=np.empty((len(sensors), 4), np.float64))
 
-    def _cast_rays(self, now, layer):
-        due = []
-        for k, (_, v) in enumerate(self._views):
-            if v.next_update_us <= now:
-                v.next_update_us = now + v.model.interval_us
-                due.append(k)
-        if due:
-            self.cast_rays(due, layer)
+    def _refresh_views(self, rangers):
+        """stageros's views of the rangers that updated: their first sensor's readings."""
+        views = self._views_of
+        for g in rangers:
+            v = views.get(g)
+            if v is not None:
+                s = v.sensor
+                v.ranges[:] = s.ranges
+                v.intensities[:] = s.intensities
+                v.has_data = True
 
     def cast_rays(self, due=None, layer=None):
-        """Casts the rays of the rangers `due` (indices, default all) from the robots' poses
-        now, through `layer` (default: the one the next step's rays read)."""
+        """Casts the rays of the sensors `due` (indices into the world's sensors, in the
+        order their noise is drawn; default all) from the robots' poses now, through `layer`
+        (default: the one the next step's rays read), and stores each sensor's readings."""
         if layer is None:
             layer = (self.updates + 1) % 2
-        tables = self._rays if due is None or len(due) == len(self._views) \
-            else self._ray_tables(due)
-        due = range(len(self._views)) if due is None else due
-        views = [self._views[k][1] for k in due]
+        due = self._all_sensors if due is None else due
+        every = len(due) == len(self._sensors)
+        tables = self._rays if every else self._ray_tables(sorted(due))
+        positions = self._all_sensors if every else sorted(due)
         origins = tables['origins']
-        for i, v in enumerate(views):
-            origins[i] = v.model.ray_origin(v.sensor)
+        for i, k in enumerate(positions):
+            g, s = self._sensors[k]
+            origins[i] = g.ray_origin(s)
         rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
                                    tables['rmax'], tables['ray_class'], tables['root'], layer)
         rr = self.space.model_rr
         intensities = np.where(hit >= 0, rr[np.maximum(hit, 0)], 0.0)
-        off = tables['offsets']
-        for i, v in enumerate(views):
-            ranges = rng[off[i]:off[i + 1]]
-            if any(v.noise):
-                ranges = self._noisy(ranges, v)
-            v.ranges[:] = ranges
-            v.intensities[:] = intensities[off[i]:off[i + 1]]
-            v.has_data = True
+        offsets = tables['offsets']
+        row = {k: i for i, k in enumerate(positions)}
+        self._draw_noise(rng, offsets, [row[k] for k in due], positions, layer)
+        if every:
+            self._beam_ranges[:] = rng
+            self._beam_intensities[:] = intensities
+        else:
+            for i, k in enumerate(positions):
+                _, s = self._sensors[k]
+                s.ranges[:] = rng[offsets[i]:offsets[i + 1]]
+                s.intensities[:] = intensities[offsets[i]:offsets[i + 1]]
+
+    def _draw_noise(self, rng, offsets, rows, positions, layer):
+        """Stage's draws of each sensor (rows of the cast, in Stage's order), noise added to
+        rng in place; a sensor with angular noise casts its beams again, one at a time, at
+        the angles its draws turn them to."""
+        sensor_of = np.asarray(positions, np.int64)
+        angular = self._noise['angular'][sensor_of]
+        if not angular.any():
+            self.noise.apply_rows(rng, offsets, np.asarray(rows, np.int64),
+                                  self._noise['rmax'][sensor_of],
+                                  self._noise['prop'][sensor_of],
+                                  self._noise['const'][sensor_of])
+            return
+        for i in rows:
+            g, s = self._sensors[positions[i]]
+            beams = slice(offsets[i], offsets[i + 1])
+            if not angular[i]:
+                self.noise.apply_rows(rng, offsets, np.array([i], np.int64),
+                                      self._noise['rmax'][sensor_of],
+                                      self._noise['prop'][sensor_of],
+                                      self._noise['const'][sensor_of])
+                continue
+            rng[beams] = self._angular_scan(g, s, layer)
+
+    def _angular_scan(self, g, s, layer):
+        """A sensor with angular noise, beam by beam as Sensor::Update casts it: each beam's
+        angle (kept as a float, as Stage's is) turned by its draw, cast, then its range
+        noise drawn."""
+        x, y, z, a = g.ray_origin(s)
+        incr = Ranger.sample_increment(s)
+        tables = self._ray_tables([self._sensors.index((g, s))])
+        tables['sensor'] = np.zeros(1, np.int64)
+        tables['offsets'] = np.array([0, 1], np.int64)
+        out = np.empty(s.samples, np.float64)
+        for t in range(s.samples):
+            saved = float(np.float32(a))
+            turned = float(np.float32(a + incr * s.noise[2] * self.noise.angle_noise() * 0.5))
+            tables['origins'][0] = (x, y, z, turned)
+            rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
+                                     tables['sensor'], tables['rmax'], tables['ray_class'],
+                                     tables['root'], layer)
+            out[t] = self.noise.range_noise(float(rng[0]), s.range[1], s.noise)
+            a = saved + incr
+        return out
 
     def scan_from(self, view, pose):
         """The ranges (float32) `view` reads with its robot at `pose` (x, y, z, a), through
@@ -223,8 +370,7 @@ class World:
         keep = robot.pose
         robot.pose = pose
         try:
-            tables = self._ray_tables([k for k, (_, v) in enumerate(self._views)
-                                       if v is view])
+            tables = self._ray_tables([self._sensors.index((view.model, view.sensor))])
             tables['origins'][0] = view.model.ray_origin(view.sensor)
         finally:
             robot.pose = keep
@@ -232,17 +378,6 @@ class World:
                                  tables['sensor'], tables['rmax'], tables['ray_class'],
                                  tables['root'], self.updates % 2)
         return rng.astype(np.float32)
-
-    def _noisy(self, ranges, v):
-        """Stage's range noise: + range * proportional * U[-1, 1) + N(0, constant variance),
-        on beams that hit (Stage's own random numbers cannot be reproduced)."""
-        const, prop, _ = v.noise
-        hit = ranges < v.range_max
-        out = ranges.copy()
-        n = int(hit.sum())
-        out[hit] += (ranges[hit] * prop * self._rng.uniform(-1.0, 1.0, n)
-                     + self._rng.normal(0.0, math.sqrt(max(const, 0.0)), n))
-        return out
 
     # ---- pictures and maps ---------------------------------------------------------------
     def occupancy(self):
@@ -266,8 +401,9 @@ def finite_float(name, value):
     return float(value)
 
 
-def load_world(path, seed=None):
-    """Parses the world file (includes, bitmaps) into a World; raises WorldError."""
+def load_world(path, seed=None, stageros=True, ctrlargs=''):
+    """Parses the world file (includes, bitmaps) into a World and starts its controllers
+    (see World); raises WorldError."""
     if not os.path.isfile(path):
         raise WorldError(path, None, 'the world file does not exist')
-    return World(path, seed)
+    return World(path, seed, stageros, ctrlargs)

@@ -55,6 +55,10 @@ class LoadedWorld:
     statics: list            # the models that never move
     static_cells: tuple      # their outline cells: (x, y) int32 arrays
     warnings: list           # loading's warnings, then Stage's "defined but not used"
+    threads: int = 1         # Stage's worker threads (at least 1): its event queues 1..threads
+    paused: bool = False     # `stage` does not start a paused world
+    show_clock: bool = False  # `stage` prints its clock line every show_clock_interval steps
+    show_clock_interval: int = 100
 
 
 def load(path, rng):
@@ -69,6 +73,13 @@ def load(path, rng):
         raise _top_error(wf, 'interval_sim', 'interval_sim must be at least 0.001 ms')
     quit_time_s = int(1e6 * wf.read_float(0, 'quit_time', 0.0)) / 1e6
     speedup = wf.read_float(0, 'speedup', 1.0)
+    threads = wf.read_int(0, 'threads', 1)
+    if threads < 1:
+        wf.warn(wf.prop(0, 'threads'), 'threads set to <1. Forcing to 1 (as Stage)')
+        threads = 1
+    flags = dict(paused=bool(wf.read_int(0, 'paused', 0)),
+                 show_clock=bool(wf.read_int(0, 'show_clock', 0)),
+                 show_clock_interval=max(1, wf.read_int(0, 'show_clock_interval', 100)))
     for name in TOP_LEVEL:
         if wf.exists(0, name):
             wf.read_string(0, name, '')
@@ -77,7 +88,7 @@ def load(path, rng):
     robots, space, ray_zs, statics, static_cells = _post_load(models, ppm, wf.warnings, path)
     return LoadedWorld(resolution_m, ppm, interval_us, quit_time_s, speedup, window, models,
                        robots, space, ray_zs, statics, static_cells,
-                       wf.warnings + wf.unused_warnings())
+                       wf.warnings + wf.unused_warnings(), threads, **flags)
 
 
 def _load_models(wf, path, rng):
@@ -143,7 +154,8 @@ def _post_load(models, ppm, warnings, path):
                   [m.ranger_return for m in models], [m.obstacle_return for m in models])
     cells = _static_cells(models, moving, ppm)
     dynamic, coll = _moving_blocks(models, moving, ppm)
-    ray_zs = sorted({v.beam_z for r in robots for v in r.rangers})
+    ray_zs = sorted({g.ray_origin(sensor)[2] for r in robots for g in r.ranger_models
+                     for sensor in g.sensors})
     space.build(cells, ray_zs, dynamic, coll, _extent(dynamic))
     _assign_blocks(robots, dynamic)
     _draw_at_start(space, robots)
@@ -170,7 +182,9 @@ def _find_robots(models, warnings, path):
                         warnings.append('%s: ranger %s has %d sensors; stageros publishes the'
                                         ' first only' % (path, c.token, len(c.sensors)))
                     rangers.append(RangerView(c, c.sensors[0], m.geom_size[2]))
-            robots.append(Robot(len(robots), m, rangers))
+            robot = Robot(len(robots), m, rangers)
+            robot.ranger_models = [v.model for v in rangers]
+            robots.append(robot)
         elif m.parent is not None and m.parent.index in moving:
             moving.add(m.index)
     return robots, moving

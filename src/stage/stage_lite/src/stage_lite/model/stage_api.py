@@ -1,0 +1,303 @@
+"""Stage's plugin interface in Python: the models and the world as a controller sees them.
+
+A controller (Stage's examples ported in stage_lite.controllers, or your own module, see
+controllers.py) gets its model as one of these and calls what Stage's C++ controllers call,
+under Python names: Subscribe() is subscribe(), AddCallback(Model::CB_UPDATE, f, arg) is
+add_callback('update', f, arg), SetSpeed is set_speed, GetSensors()[0].ranges is
+sensors[0].ranges, and so on (the table in the package README). Callbacks are called as
+f(model, arg), model being the same object; one that returns a true value is removed, as in
+Stage. No rospy.
+"""
+import math
+from dataclasses import dataclass
+
+from .pose import pose_add, stage_normalize
+from .scheduler import CB_FLAGDECR, CB_FLAGINCR
+
+
+@dataclass(frozen=True)
+class Pose:
+    """Stage's Pose: x, y, z (m), a (rad)."""
+
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+    a: float = 0.0
+
+    def __add__(self, other):
+        """Stage's Pose + Pose: other in this pose's frame."""
+        return Pose(*pose_add(tuple(self), tuple(other)))
+
+    def __iter__(self):
+        return iter((self.x, self.y, self.z, self.a))
+
+
+@dataclass
+class Flag:
+    """Stage's Model::Flag: what foraging robots pick up and drop, a colour and a size."""
+
+    color: tuple = (1.0, 1.0, 0.0, 1.0)
+    size: float = 0.25
+
+
+class CtrlArgs:
+    """Stage's CtrlArgs: `worldfile`, the whole ctrl string ("source 5"), and `cmdline`,
+    the `stage -a` argument string (World::ctrlargs)."""
+
+    def __init__(self, worldfile, cmdline):
+        self.worldfile = worldfile
+        self.cmdline = cmdline
+
+    def words(self):
+        """The ctrl string split on blanks: [name, arg1, ...]."""
+        return self.worldfile.split()
+
+
+class WorldApi:
+    """The world a controller sees (one per World)."""
+
+    def __init__(self, world):
+        self._world = world
+
+    @property
+    def ctrlargs(self):
+        return self._world.ctrlargs
+
+    def sim_time_now(self):
+        """Simulated time, microseconds (Stage's usec_t)."""
+        return self._world.sim_time_us
+
+    def update_count(self):
+        return self._world.updates
+
+    def get_model(self, name):
+        """The model whose token (its name, or Stage's made-up `position:0.ranger:1`) is
+        name, or None."""
+        tokens = self._world.__dict__.get('_models_by_token')
+        if tokens is None:     # Stage's models_by_name: a later model of a name wins
+            tokens = self._world._models_by_token = {m.token: m for m in self._world.models}
+        m = tokens.get(name)
+        return api_of(self._world, m) if m is not None else None
+
+    def random(self):
+        """glibc's random(), the stream Stage's own draws share."""
+        return self._world.random.random()
+
+    rand = random
+
+    def random_block(self, count):
+        """The next `count` values of random(), in order (an int64 array)."""
+        return self._world.random.block(count)
+
+    def drand48(self):
+        return self._world.rand48.drand48()
+
+    def add_update_callback(self, function, argument=None):
+        """World::AddUpdateCallback: f(world, arg) after every step's model callbacks."""
+        self._world.scheduler.add_world_callback(lambda _, a: function(self, a), argument)
+
+
+class ModelApi:
+    """Stage's Model: its tree, pose, geometry, subscriptions, callbacks and flags."""
+
+    def __init__(self, world, model):
+        self._world = world
+        self._model = model
+
+    def __repr__(self):
+        return '<%s %s>' % (type(self).__name__, self.token)
+
+    @property
+    def token(self):
+        return self._model.token
+
+    @property
+    def type(self):
+        return self._model.kind
+
+    @property
+    def world(self):
+        return world_api(self._world)
+
+    @property
+    def parent(self):
+        p = self._model.parent
+        return api_of(self._world, p) if p is not None else None
+
+    @property
+    def children(self):
+        return [api_of(self._world, c) for c in self._model.children]
+
+    def get_child(self, name):
+        """Model::GetChild: the model named `<this token>.<name>`, or None."""
+        return self.world.get_model('%s.%s' % (self.token, name))
+
+    def get_unused_model_of_type(self, kind):
+        """Model::GetUnusedModelOfType: this model or the first of its descendants (depth
+        first) of that type not taken yet, now taken; None if there is none."""
+        stack = [self._model]
+        while stack:
+            m = stack.pop(0)
+            if m.kind == kind and not m.used:
+                m.used = True
+                return api_of(self._world, m)
+            stack[0:0] = m.children
+        return None
+
+    # ---- pose and geometry -----------------------------------------------------------------
+    def get_pose(self):
+        return Pose(*self._model.pose)
+
+    def get_global_pose(self):
+        return Pose(*self._model.global_pose())
+
+    def get_geom(self):
+        """(origin Pose, size (x, y, z))."""
+        return Pose(*self._model.geom_pose), tuple(self._model.geom_size)
+
+    @property
+    def color(self):
+        return self._model.color
+
+    # ---- subscriptions and callbacks -------------------------------------------------------
+    def subscribe(self):
+        self._world.subscribe(self._model)
+
+    def unsubscribe(self):
+        self._world.unsubscribe(self._model)
+
+    def add_callback(self, kind, function, argument=None):
+        """Model::AddCallback: kind 'update', 'flag_incr', 'flag_decr', 'startup' or
+        'shutdown'; function(model, argument)."""
+        self._world.scheduler.add_callback(self._model, kind,
+                                           lambda _, a: function(self, a), argument)
+
+    # ---- flags ---------------------------------------------------------------------------
+    def get_flag_count(self):
+        return len(self._model.flags)
+
+    def push_flag(self, flag):
+        """Model::PushFlag: on top of its flags (flag_incr callbacks)."""
+        if flag is not None:
+            self._model.flags.append(flag)
+            self._world.scheduler.call(self._model, CB_FLAGINCR)
+
+    def pop_flag(self):
+        """Model::PopFlag: the oldest flag, removed (flag_decr callbacks); None if none."""
+        if not self._model.flags:
+            return None
+        flag = self._model.flags.pop(0)
+        self._world.scheduler.call(self._model, CB_FLAGDECR)
+        return flag
+
+
+class PositionApi(ModelApi):
+    """Stage's ModelPosition: commands (velocity, acceleration, position), its velocity,
+    estimate and stall."""
+
+    @property
+    def _robot(self):
+        return self._world.robot_of(self._model)
+
+    def set_speed(self, x, y, a):
+        self._command('velocity', x=x, y=y, z=0.0, a=a)
+
+    def set_x_speed(self, x):
+        self._command('velocity', x=x)
+
+    def set_y_speed(self, y):
+        self._command('velocity', y=y)
+
+    def set_z_speed(self, z):
+        self._command('velocity', z=z)
+
+    def set_turn_speed(self, a):
+        self._command('velocity', a=a)
+
+    def set_acceleration(self, x, y, a):
+        self._command('acceleration', x=x, y=y, z=0.0, a=a)
+
+    def go_to(self, x, y, a):
+        self._command('position', x=x, y=y, z=0.0, a=a)
+
+    def _command(self, mode, **parts):
+        r = self._robot
+        goal = dict(zip('xyza', r.goal, strict=True))
+        for axis, value in parts.items():
+            if not math.isfinite(value):
+                raise ValueError('%s: %s %s must be finite, got %r'
+                                 % (self.token, mode, axis, value))
+            goal[axis] = float(value)
+        r.goal = (goal['x'], goal['y'], goal['z'], goal['a'])
+        r.control_mode = mode
+
+    def get_velocity(self):
+        return Pose(*self._robot.velocity)
+
+    def get_goal(self):
+        return Pose(*self._robot.goal)
+
+    @property
+    def est_pose(self):
+        """The position model's estimate (odometry or gps)."""
+        return Pose(*self._robot.est_pose)
+
+    def stalled(self):
+        return self._robot.stalled
+
+
+class SensorApi:
+    """One sensor of a ranger (Stage's ModelRanger::Sensor): pose, size, range, fov,
+    sample_count, and what its last update read (ranges, intensities: arrays, writable, as
+    a lasernoise-like controller changes them; bearings)."""
+
+    def __init__(self, sensor):
+        self._sensor = sensor
+
+    pose = property(lambda self: Pose(*self._sensor.pose))
+    size = property(lambda self: tuple(self._sensor.size))
+    range = property(lambda self: tuple(self._sensor.range))
+    fov = property(lambda self: self._sensor.fov)
+    sample_count = property(lambda self: self._sensor.samples)
+    ranges = property(lambda self: self._sensor.ranges)
+    intensities = property(lambda self: self._sensor.intensities)
+
+    @property
+    def bearings(self):
+        s = self._sensor
+        start = -s.fov / 2.0 if s.samples > 1 else 0.0
+        incr = s.fov / max(s.samples - 1, 1)
+        return [start + t * incr for t in range(s.samples)]
+
+
+class RangerApi(ModelApi):
+    """Stage's ModelRanger: its sensors."""
+
+    @property
+    def sensors(self):
+        return [SensorApi(s) for s in self._model.sensors]
+
+    def get_sensors(self):
+        return self.sensors
+
+
+def world_api(world):
+    api = getattr(world, '_world_api', None)
+    if api is None:
+        api = world._world_api = WorldApi(world)
+    return api
+
+
+def api_of(world, model):
+    """The one handle of a model (made at first use)."""
+    handles = world.__dict__.setdefault('_handles', {})
+    handle = handles.get(model)
+    if handle is None:
+        cls = {'position': PositionApi, 'ranger': RangerApi}.get(model.kind, ModelApi)
+        handle = handles[model] = cls(world, model)
+    return handle
+
+
+def normalize(angle):
+    """Stage's normalize: an angle in [-pi, pi]."""
+    return stage_normalize(angle)

@@ -1,0 +1,256 @@
+"""Stage's controllers: found and started as Stage does, driving as their C++ rules say, and
+every way a controller can be wrong reported on the world file's line."""
+import math
+
+import numpy as np
+import pytest
+from stage_lite.controllers import wander
+from stage_lite.controllers._expand import Law, steer
+from stage_lite.model.glibc_random import Random
+from stage_lite.model.noise import RangerNoise
+from stage_lite.model.world import WorldError, load_world
+
+ROOM = '''resolution 0.02
+interval_sim 100
+define laser ranger ( sensor( range [ 0 8 ] fov 180 samples 37 ) )
+model( pose [ 0 0 0 0 ] size [ 10 10 0.5 ] boundary 1 noblocks 1 obstacle_return 1 )
+'''
+
+
+def world_file(tmp_path, body, name='w.world'):
+    path = tmp_path / name
+    path.write_text(ROOM + body)
+    return str(path)
+
+
+# ---- wander, rule by rule ------------------------------------------------------------------
+def test_wander_looks_for_obstructions_in_the_middle_third_only():
+    far = np.full(9, 5.0)
+    for i, seen in [(3, False), (4, True), (5, True), (6, False)]:   # n/3 < i < n - n/3
+        scan = far.copy()
+        scan[i] = 0.9
+        assert wander.decide(scan)[0] is seen, i
+
+
+def test_wander_stops_for_anything_within_0_3_m_and_splits_left_from_right():
+    scan = np.full(9, 5.0)
+    scan[0] = 0.29                       # the rightmost beam
+    obstruction, stop, min_left, min_right = wander.decide(scan)
+    assert (obstruction, stop, min_left, min_right) == (False, True, 5.0, 0.29)
+    scan[:] = 5.0
+    scan[5] = 2.0                        # i > n/2: the left half
+    assert wander.decide(scan)[2:] == (2.0, 5.0)
+
+
+class _Position:
+    """What wander commands, recorded; its world's random() is a glibc stream."""
+
+    def __init__(self, stream):
+        self.speeds = []
+        self.world = self
+        self._stream = stream
+
+    def random(self):
+        return self._stream.random()
+
+    def set_x_speed(self, x):
+        self.speeds.append(('x', x))
+
+    def set_turn_speed(self, a):
+        self.speeds.append(('a', a))
+
+
+class _Laser:
+    def __init__(self, scan):
+        self.sensors = [type('S', (), {'ranges': np.asarray(scan, float)})()]
+
+
+def test_an_avoidance_lasts_random_mod_10_plus_10_updates_and_keeps_its_side():
+    position = _Position(Random())                 # an unseeded process's first random()
+    scan = np.full(9, 5.0)
+    scan[4] = 0.5                                  # ahead
+    scan[2] = 0.8                                  # nearer on the right: turn left
+    laser = _Laser(scan)
+    robot = wander.Wanderer(position, laser)
+    robot.laser_update(laser, None)
+    assert position.speeds == [('x', wander.AVOID_SPEED), ('a', wander.AVOID_TURN)]
+    assert robot.avoid_count == 1804289383 % 10 + 10 - 1
+    laser.sensors[0].ranges[:] = 5.0               # clear now, but the avoidance goes on
+    position.speeds.clear()
+    robot.laser_update(laser, None)
+    assert position.speeds == [('x', wander.AVOID_SPEED)] and robot.avoid_count == 11
+    robot.avoid_count = 0
+    robot.laser_update(laser, None)
+    assert position.speeds[-2:] == [('x', wander.CRUISE_SPEED), ('a', 0.0)]
+
+
+def test_the_expand_law_steers_along_the_sum_and_drives_only_when_clear():
+    headings = [2 * math.pi * k / 12 for k in range(12)]
+    law = Law(0.3, 1.0, 0.5, ((0, 0.5), (1, 0.5 / 1.5)))
+    commands = []
+    position = type('P', (), {'set_speed': lambda self, *v: commands.append(v)})()
+
+    def ranger(first):
+        return type('R', (), {'sensors': [type('S', (), {'ranges': [r]})() for r in first]})()
+    ranges = [1.0] * 12
+    ranges[0], ranges[1] = 3.0, 1.2                  # open ahead, a little more on the left
+    steer(position, ranger(ranges), law, headings)
+    dx = sum(r * math.cos(a) for r, a in zip(ranges, headings, strict=True))
+    dy = sum(r * math.sin(a) for r, a in zip(ranges, headings, strict=True))
+    assert commands[-1] == (0.3, 0.0, math.atan2(dy, dx))
+    assert 0 < commands[-1][2] < 0.5                 # a small turn left
+    ranges[1] = 0.3                                  # sensor 1 too close: turn only
+    steer(position, ranger(ranges), law, headings)
+    assert commands[-1][0] == 0.0
+
+
+# ---- in a world ----------------------------------------------------------------------------
+def test_wanderers_drive_in_stages_own_program_and_turn_before_the_wall(tmp_path):
+    path = world_file(tmp_path, 'position( pose [ -3 0 0 0 ] size [ 0.4 0.4 0.3 ] laser( )'
+                      ' ctrl "wander" )\n')
+    w = load_world(path, stageros=False)
+    r = w.robots[0]
+    for _ in range(5):
+        w.step()
+    assert r.velocity[0] == wander.CRUISE_SPEED
+    for _ in range(300):                               # 12 m at 0.4 m/s: the wall is 8 m away
+        w.step()
+        assert r.pose[0] < 4.7 and not r.stalled      # it turns away before the wall
+    assert abs(r.pose[2]) > 0.5
+
+
+def test_stages_program_moves_nothing_that_no_controller_subscribes(tmp_path):
+    path = world_file(tmp_path, 'position( pose [ 0 0 0 0 ] )\n')
+    still = load_world(path, stageros=False)
+    moving = load_world(path)                         # stageros subscribes every robot
+    for w in (still, moving):
+        w.set_command(0, 0.2, 0.0, 0.0)
+        for _ in range(10):
+            w.step()
+    assert still.robots[0].pose == (0.0, 0.0, 0.0)
+    assert moving.robots[0].pose[0] == pytest.approx(0.2)
+
+
+def test_the_same_world_runs_the_same_every_time_and_a_seed_changes_the_draws(tmp_path):
+    path = world_file(tmp_path, ''.join(
+        'position( pose [ %g %g 0 %d ] size [ 0.4 0.4 0.3 ] laser( ) ctrl "wander" )\n'
+        % (x, y, a) for x, y, a in [(-3, -3, 10), (3, 3, 200), (-3, 3, 300), (2, -2, 45)]))
+
+    def run(seed):
+        w = load_world(path, seed=seed, stageros=False)
+        for _ in range(300):
+            w.step()
+        return [r.pose for r in w.robots]
+    assert run(None) == run(None)
+    assert run(7) == run(7)
+    assert run(7) != run(None)
+
+
+def test_source_fills_up_to_its_capacity_and_sink_counts_deliveries(tmp_path):
+    from stage_lite.controllers import sink
+    path = world_file(tmp_path, 'model( pose [ 1 1 0 0 ] ctrl "source 3 ignored" )\n'
+                      'model( pose [ -1 1 0 0 ] ctrl "sink" )\n')
+    w = load_world(path, stageros=False)
+    source, drop = (w.handle(m) for m in w.models[1:3])
+    counts = []
+    for _ in range(5):
+        w.step()
+        counts.append(source.get_flag_count())
+    assert counts == [1, 2, 3, 3, 3]
+    before = sink.delivered
+    drop.push_flag(source.pop_flag())
+    assert (sink.delivered - before, drop.get_flag_count(), source.get_flag_count()) == (1, 1, 2)
+
+
+def test_lasernoise_scales_each_range_by_its_twelve_draws(tmp_path):
+    body = 'position( pose [ 0 0 0 0 ] size [ 0.4 0.4 0.3 ] laser( %s ) )\n'
+    clean = load_world(world_file(tmp_path, body % '', 'clean.world'))
+    noisy = load_world(world_file(tmp_path, body % 'ctrl "lasernoise"'))
+    clean.step()
+    noisy.step()
+    truth = clean.robots[0].rangers[0].sensor.ranges.copy()
+    # the same stream by Stage's rules: the laser's queue drawn when it started, its scan's
+    # own draws (every beam hits a wall), then the controller's twelve per beam
+    stream = Random()
+    stream.random()
+    RangerNoise(stream).apply(truth, 8.0, (0.0, 0.0, 0.0))
+    draws = stream.block(12 * len(truth)).reshape(len(truth), 12)
+    factor = np.zeros(len(truth))
+    for k in range(12):
+        factor += draws[:, k] / 2.0 ** 31
+    want = truth * (0.05 * (factor - 6.0) + 1.0)
+    assert noisy.robots[0].rangers[0].sensor.ranges.tolist() == want.tolist()
+    # and stageros publishes the scan as the controller left it
+    assert noisy.robots[0].rangers[0].ranges.tolist() == want.astype(np.float32).tolist()
+
+
+# ---- what can go wrong ---------------------------------------------------------------------
+@pytest.mark.parametrize('ctrl, what', [
+    ('"nosuch"', 'no controller "nosuch": not in STAGEPATH'),
+    ('"source"', 'source needs its capacity'),
+    ('"source many"', 'capacity must be a whole number, got "many"'),
+    ('""', 'no controller named'),
+])
+def test_a_controller_stage_cannot_use_is_one_error_on_its_line(tmp_path, ctrl, what):
+    path = world_file(tmp_path, 'model(\n  pose [ 0 0 0 0 ]\n  ctrl %s\n)\n' % ctrl)
+    with pytest.raises(WorldError) as err:
+        load_world(path, stageros=False)
+    assert str(err.value).startswith('%s:%d:' % (path, ROOM.count('\n') + 3)), err.value
+    assert what in str(err.value)
+
+
+def test_wander_on_a_robot_without_a_laser_is_an_error_on_its_line(tmp_path):
+    path = world_file(tmp_path, 'position( ctrl "wander" )\n')
+    with pytest.raises(WorldError, match='has no ranger with more than 8 samples'):
+        load_world(path, stageros=False)
+
+
+MINE = '''
+calls = []
+
+
+def init(model, args):
+    calls.append((model.token, args.worldfile, args.cmdline))
+    model.subscribe()
+    model.add_callback('update', tick, args.words()[1])
+
+
+def tick(model, limit):
+    model.set_speed(0.1, 0.0, 0.0)
+    if model.world.update_count() >= int(limit):
+        raise RuntimeError('enough')
+'''
+
+
+def test_my_own_python_controller_is_found_on_stagepath(tmp_path, monkeypatch):
+    (tmp_path / 'mine.py').write_text(MINE)
+    monkeypatch.setenv('STAGEPATH', '/nonexistent:%s' % tmp_path)
+    path = world_file(tmp_path, 'position( name "r" ctrl "mine 3" )\n')
+    logged = []
+    w = load_world(path, stageros=False, ctrlargs='-v')
+    w.log = logged.append
+    for _ in range(10):
+        w.step()
+    # it drove until its callback raised, then the error was reported once, on its line
+    assert len(logged) == 1 and logged[0].startswith('%s:%d: ctrl "mine 3" on r: '
+                                                     'RuntimeError: enough' % (path, 5))
+    # commanded from the first update on, moving from the second, and on after the error:
+    # its last command stays, as in Stage
+    assert w.robots[0].pose[0] == pytest.approx(9 * 0.01)
+    assert w.robots[0].velocity[0] == 0.1
+
+
+@pytest.mark.parametrize('source, what', [
+    ('def init(:\n', 'the controller does not load: '),
+    ('x = 1\n', 'has no init(model, args)'),
+    ('def init(model, args):\n    raise KeyError("boom")\n', 'its init failed: KeyError'),
+])
+def test_a_broken_python_controller_is_one_error_naming_the_world_line(tmp_path, monkeypatch,
+                                                                        source, what):
+    (tmp_path / 'broken.py').write_text(source)
+    monkeypatch.setenv('STAGEPATH', str(tmp_path))
+    path = world_file(tmp_path, 'position( ctrl "broken" )\n')
+    with pytest.raises(WorldError) as err:
+        load_world(path, stageros=False)
+    assert str(err.value).startswith('%s:%d: ctrl "broken"' % (path, 5)) and what in str(
+        err.value), err.value
