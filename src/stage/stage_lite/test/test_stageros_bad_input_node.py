@@ -35,6 +35,10 @@ class StagerosBadInputTest(StageTestCase):
         self._fails(['-g', world('node_bad_tuple.world')], 'node_bad_tuple.world:3:',
                     'pose needs 4 values, got 3')
 
+    def test_a_controller_found_nowhere_names_file_and_line(self):
+        self._fails(['-g', world('node_bad_ctrl.world')], 'node_bad_ctrl.world:7:',
+                    'no controller "no_such_controller"')
+
     def test_no_world_file_prints_the_usage(self):
         self._fails(['-g'], 'Usage: stageros [-g] [-u] WORLD')
 

@@ -82,14 +82,18 @@ class Program:
             pass
 
 
-def load(args):
+def load(args, out):
+    """The world and its controllers, or one FATAL line on a line of its own and exit 1."""
     from ..model.world import WorldError, load_world
     try:
         return load_world(args.world, stageros=False, ctrlargs=args.ctrlargs)
     except WorldError as err:
-        sys.stderr.write('[FATAL] %s\n' % err)
+        why = str(err)
     except Exception as err:  # an odd file: one line, never a traceback
-        sys.stderr.write('[FATAL] %s: could not load the world: %s\n' % (args.world, err))
+        why = '%s: could not load the world: %s' % (args.world, err)
+    out.write('\n')
+    out.flush()
+    sys.stderr.write('[FATAL] %s\n' % why)
     sys.exit(1)
 
 
@@ -142,7 +146,7 @@ def main(argv=None):
                              '[GUI disabled]' if args.headless else ''))
     out.write(' [Loading %s]' % args.world)
     out.flush()
-    world = load(args)
+    world = load(args, out)
     for line in world.warnings:
         sys.stderr.write('[WARN] %s\n' % line)
     if world.threads > 1:

@@ -208,6 +208,7 @@ def world_or_exit(loader):
     if loader.error is not None or loader.world is None:
         _fatal(loader.error or '%s: could not load the world' % loader.path)
     world = loader.world
+    world.log = rospy.logerr      # a controller's callback that raises: one ERROR line
     if not world.robots:
         rospy.logwarn('%s: the world has no position models: no robot topics', world.path)
     for line in world.warnings:

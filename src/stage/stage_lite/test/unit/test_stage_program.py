@@ -1,0 +1,87 @@
+"""Stage's own program, `stage [-g] [-c] [-a ARGS] WORLD`, run as a user runs it (no ROS)."""
+
+import pytest
+from course_common.processes import run_to_exit, spawn
+from course_common.testing import wait_for
+from stage_lite.node.stage_program import clock_line
+
+RUN_DEADLINE_S = 60.0
+WORLD = '''resolution 0.02
+interval_sim 100
+%s
+define laser ranger ( sensor( range [ 0 8 ] fov 180 samples 37 ) )
+model( pose [ 0 0 0 0 ] size [ 6 6 0.5 ] boundary 1 noblocks 1 )
+position( name "r" pose [ -1 0 0 0 ] size [ 0.4 0.4 0.3 ] laser( ) ctrl "%s" )
+'''
+ARGS_CONTROLLER = '''
+def init(model, args):
+    with open(%r, 'w') as f:
+        f.write(args.worldfile + '|' + args.cmdline)
+'''
+
+
+def world(tmp_path, top='quit_time 5', ctrl='wander'):
+    path = tmp_path / 'w.world'
+    path.write_text(WORLD % (top, ctrl))
+    return str(path)
+
+
+def stage(*args, env=None):
+    return run_to_exit(['stage', *args], RUN_DEADLINE_S, env=env)
+
+
+def test_clock_line_is_stages():
+    assert clock_line(0) == ' 0m 00s 000msec'
+    assert clock_line(61_500_000) == ' 1m 01s 500msec'
+    assert clock_line(3_723_004_000) == '1h 2m 03s 004msec'
+
+
+def test_headless_with_the_clock_runs_to_quit_time(tmp_path):
+    code, out = stage('-g', '-c', world(tmp_path, 'quit_time 25\nshow_clock_interval 100'))
+    assert code == 0, out
+    assert out.startswith('Stage 4.3.0 (stage_lite) [Clock enabled][GUI disabled]')
+    assert out.rstrip().endswith('[Stage: done]')
+    # printed before the steps 0, 100 and 200 (sim time 0, 10 and 20 s), rewritten in place
+    assert out.count('\r[Stage:') == 3
+    assert '\r[Stage:  0m 20s 000msec]' in out and 'Traceback' not in out
+
+
+def test_a_paused_world_runs_headless_as_stage_does_and_args_reach_the_controllers(
+        tmp_path, monkeypatch):
+    got = tmp_path / 'args.txt'
+    (tmp_path / 'echo_args.py').write_text(ARGS_CONTROLLER % str(got))
+    monkeypatch.setenv('STAGEPATH', str(tmp_path))
+    code, out = stage('-g', '-a', 'fast quiet', world(tmp_path, 'paused 1\nquit_time 1',
+                                                       'echo_args one two'))
+    assert code == 0, out
+    assert got.read_text() == 'echo_args one two|fast quiet'
+
+
+@pytest.mark.parametrize('args, code, what', [
+    ([], 2, 'usage: stage [-g] [-c] [-a ARGS] WORLD'),
+    (['-g', '/nonexistent.world'], 1, '[FATAL] /nonexistent.world: the world file does not'),
+    (['-g', '--speed', 'x.world'], 2, 'unrecognized arguments: --speed'),
+])
+def test_wrong_command_lines(args, code, what):
+    got, out = stage(*args)
+    assert got == code and what in out and 'Traceback' not in out, out
+
+
+def test_a_world_stage_refuses_is_one_fatal_line(tmp_path):
+    path = world(tmp_path, ctrl='no_such')
+    code, out = stage('-g', path)
+    assert code == 1 and 'Traceback' not in out, out
+    fatal = [line for line in out.splitlines() if '[FATAL]' in line]
+    assert len(fatal) == 1 and fatal[0].startswith('[FATAL] %s:6: ctrl "no_such"' % path)
+
+
+def test_ctrl_c_ends_it_at_once_without_a_traceback(tmp_path):
+    proc = spawn(['stage', '-g', '-c', world(tmp_path, 'quit_time 0\nshow_clock_interval 10')])
+    try:
+        wait_for(lambda: proc.output().count('\r[Stage:') >= 2, RUN_DEADLINE_S,
+                 'stage stepping; output:\n%s' % proc.output(), alive=proc.alive)
+        proc.interrupt()
+        assert proc.wait_exit(RUN_DEADLINE_S) == 130
+    finally:
+        proc.stop()
+    assert '[Stage: interrupted]' in proc.output() and 'Traceback' not in proc.output()
