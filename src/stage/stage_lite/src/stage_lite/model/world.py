@@ -23,6 +23,7 @@ import os
 import numpy as np
 
 from . import floor, grid, world_load
+from .camera import CameraRig
 from .pose import pose_add, stage_normalize
 from .ranger import Ranger
 from .robot import body_row
@@ -57,6 +58,9 @@ class World:
         self.sim_time_us = 0
         self.updates = 0
         self._prepare_rays()
+        # the cameras stageros publishes (camera.py); they draw before the step's moves
+        self.cameras = CameraRig(self.models, self.robots, self._statics, self.ppm,
+                                 self.window, self.warnings)
 
     # ---- the interface -------------------------------------------------------------------
     def set_command(self, i, vx, vy, wz):
@@ -91,6 +95,7 @@ class World:
             if r.next_update_us <= now:
                 self._update_position(r, dt)
                 r.next_update_us = now + r.model.interval_us
+        self.cameras.update(now)
         layer = self.updates % 2
         for r in self.robots:
             old = r.pose
