@@ -9,7 +9,12 @@ import math
 
 import numpy as np
 import pytest
-from stage_lite.model.camera_render import CLEAR_RGBA, FLOOR_RGBA, gl_rgba
+from stage_lite.model.camera_render import (
+    CLEAR_RGBA,
+    FLOOR_OFFSET_SLOPES,
+    FLOOR_RGBA,
+    gl_rgba,
+)
 from stage_lite.model.world import load_world
 
 DEPTH_TOL = 1e-6      # the ray cast in float64, stored as float32 (Stage's): relative
@@ -92,8 +97,17 @@ def test_above_the_wall_reads_far_below_it_the_floor(tmp_path):
     assert (v.depth[above] == np.float32(8.0)).all()
     below = 0.2 + 3.0 * t < 0.0
     assert below.any()
-    floor_d = -0.2 / t[below]            # where each row's ray meets z = 0
-    assert np.allclose(v.depth[below], floor_d[:, None], rtol=DEPTH_TOL)
+    floor_t = -0.2 / t[below]            # where each row's ray meets z = 0
+    # the floor's polygon offset: its window depth pushed back by a constant
+    n, f = 0.2, 8.0
+    scale = f / (f - n)
+    push = FLOOR_OFFSET_SLOPES * scale * n * (1 / 0.2) * 2 * math.tan(math.radians(20)) / 24
+    dwin = scale * (1 - n / floor_t) + push
+    drawn = dwin < 1.0       # pushed to 1.0 or beyond, it fails the depth test: not drawn
+    assert drawn.any() and not drawn.all()
+    want = n * f / (f - dwin[drawn] * (f - n))
+    assert np.allclose(v.depth[below][drawn], want[:, None], rtol=DEPTH_TOL)
+    assert (v.depth[below][~drawn] == np.float32(8.0)).all()
     assert not np.isinf(v.depth).any()   # Stage's own depth: far, not inf (stageros's)
 
 
@@ -101,12 +115,13 @@ def test_colours(tmp_path):
     v = frame(world(tmp_path, d=3.1, h=0.5))
     _, t = pixel_tangents(v)
     rows = {'sky': 0.2 + 3.0 * t > 0.5, 'wall': (0.2 + 3.0 * t >= 0) & (0.2 + 3.0 * t <= 0.5),
-            'floor': 0.2 + 3.0 * t < 0.0}
+            'floor': 0.2 + 3.0 * t < -1.0}   # near rows: their offset floor is drawn
     want = {'sky': gl_rgba(CLEAR_RGBA), 'wall': (0, 0, 255, 255),
             'floor': gl_rgba(FLOOR_RGBA)}
     for name, mask in rows.items():
         assert (v.rgba[mask] == want[name]).all(), name
     assert gl_rgba(FLOOR_RGBA) == (255, 255, 255, 255)
+    assert gl_rgba(CLEAR_RGBA) == (178, 178, 204, 255)     # as read back from real Stage
 
 
 def test_beyond_far_is_not_drawn(tmp_path):
@@ -143,8 +158,8 @@ def test_tilt_looks_down(tmp_path):
     text = ('resolution 0.02\nposition( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.5 ]'
             ' camera( resolution [ 1 1 ] fov [ 10 10 ] pantilt [ 0 30 ] ) )\n')
     v = frame(world(tmp_path, text=text))
-    # the axis meets the floor 0.5 / sin 30 away along it
-    assert v.depth[0, 0] == pytest.approx(0.5 / math.sin(math.radians(30)), rel=1e-6)
+    # the axis meets the floor 0.5 / sin 30 away along it; its polygon offset reads deeper
+    assert v.depth[0, 0] > 0.5 / math.sin(math.radians(30))
     assert tuple(v.rgba[0, 0]) == gl_rgba(FLOOR_RGBA)
 
 

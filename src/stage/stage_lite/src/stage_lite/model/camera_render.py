@@ -26,13 +26,19 @@ FLOOR_RGBA = (1.0, 1.0, 1.0, 1.0)     # Canvas::DrawFloor's glColor4f
 BACKGROUND = -1                       # a pixel's hit: nothing drawn
 FLOOR = -2                            # a pixel's hit: the floor
 SRBITS = 10                           # region.hh: super-regions of 2^10 cells a side
+#: Canvas::DrawFloor's glPolygonOffset(2.0, 2.0): the floor's depth is pushed back by
+#: factor x its depth slope per pixel. Measured on the real Stage under Xvfb's Mesa (golden
+#: data, test/golden/camera/): a constant 2.375 x the slope (1.1875 x the factor), the units
+#: term too small to see; so the floor reads deeper than it lies, and where the push reaches
+#: 1.0 it fails the depth test (clear colour).
+FLOOR_OFFSET_SLOPES = 2.375
 _FLOAT32 = np.float32
 
 
 def gl_ubyte(c):
-    """A colour channel in 0..1 as OpenGL stores it in an 8-bit buffer (float, x 255,
-    rounded)."""
-    return int(math.floor(float(_FLOAT32(c) * _FLOAT32(255.0)) + 0.5))
+    """A colour channel in 0..1 as OpenGL stores it in an 8-bit buffer: the float colour
+    x 255, rounded (0.7 -> 178, as read back from the real Stage)."""
+    return int(math.floor(float(_FLOAT32(c)) * 255.0 + 0.5))
 
 
 def gl_rgba(colour):
@@ -209,6 +215,15 @@ def cast_pixels(eye, rot, tan_h, tan_v, near, far, boxes, ranges, edges, owners,
     the model, FLOOR, or far and BACKGROUND."""
     height, width = depth.shape
     ox, oy, oz = eye[0], eye[1], eye[2]
+    # window depth d = scale (1 - near / t); over the floor plane 1 / t is affine in the
+    # pixel's tangents u, v with slopes n_eye.x / -oz, n_eye.y / -oz (n_eye: world up seen
+    # from the eye); the push is FLOOR_OFFSET_SLOPES x the larger slope per pixel
+    scale = far / (far - near)
+    floor_push = 0.0
+    if oz > 0.0:
+        su = abs(rot[2, 0] / oz) * 2.0 * tan_h / width
+        sv = abs(rot[2, 1] / oz) * 2.0 * tan_v / height
+        floor_push = FLOOR_OFFSET_SLOPES * scale * near * max(su, sv)
     for r in prange(height):
         v = (1.0 - (r + 0.5) * 2.0 / height) * tan_v
         for c in range(width):
@@ -258,10 +273,15 @@ def cast_pixels(eye, rot, tan_h, tan_v, near, far, boxes, ranges, edges, owners,
                     hit = groups[g, 2]
             if oz > 0.0 and dz < 0.0:
                 t = -oz / dz
-                if near <= t < best:
-                    px, py = ox + t * dx, oy + t * dy
-                    if floor[0] <= px <= floor[1] and floor[2] <= py <= floor[3]:
-                        best = t
+                px, py = ox + t * dx, oy + t * dy
+                if near <= t <= far and floor[0] <= px <= floor[1] \
+                        and floor[2] <= py <= floor[3]:
+                    # the floor's window depth pushed back by its polygon offset, against
+                    # the nearest block's (or the cleared 1.0)
+                    dwin = scale * (1.0 - near / t) + floor_push
+                    dbest = scale * (1.0 - near / best) if hit != BACKGROUND else 1.0
+                    if dwin < dbest:
+                        best = near * far / (far - dwin * (far - near))
                         hit = FLOOR
             depth[r, c] = best
             hits[r, c] = hit
