@@ -17,7 +17,7 @@ PACKAGE = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', '
 #: The node's modules that are rospy's by design: the node, its publishers, services,
 #: stepping thread, rospy shortcuts and parameters.
 NODE_GLUE = {'stageros_node', 'stage_publish', 'stage_services', 'step_loop', 'rospy_clock',
-             'stageros_params'}
+             'stageros_params', 'camera_publish'}
 #: The view's one rospy module: the Tk window (it logs and shuts ROS down on File -> Exit).
 VIEW_WINDOW = 'gui'
 CHECK = ('import importlib, sys; importlib.import_module(sys.argv[1]); '

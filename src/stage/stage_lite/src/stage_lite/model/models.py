@@ -26,7 +26,6 @@ from .pose import pose_add, stage_normalize
 from .worldfile import WorldError
 
 DEFAULT_SIZE = (0.4, 0.4, 1.0)        # Stage's Size()
-CAMERA_SIZE = (0.1, 0.07, 0.05)
 BLINKENLIGHT_SIZE = (0.02, 0.02, 0.02)
 BOUNDARY_WIDTH = 0.01                 # Model::Load's boundary rectangles, m
 DEFAULT_INTERVAL_US = 100000
@@ -296,12 +295,6 @@ class Fiducial(Model):
 class Blobfinder(Model):
     def construct(self):
         self.clear_blocks()
-
-
-class Camera(Model):
-    def construct(self):
-        self.set_geom((0.0, 0.0, 0.0, 0.0), CAMERA_SIZE)
-        self.color = (0.0, 0.0, 0.0, 1.0)
 
 
 class Blinkenlight(Model):

@@ -27,7 +27,6 @@ class RangerView:
         self.ranges = np.full(self.samples, self.range_max, np.float32)
         self.intensities = np.zeros(self.samples, np.float32)
         self.has_data = False       # stageros publishes a ranger after its first update
-        self.next_update_us = model.interval_us
         self.beam_z = model.ray_origin(sensor)[2]
 
     @property
@@ -69,7 +68,6 @@ class Robot:
         self.est_pose = model.initial_estimate()
         self.stalled = False
         self.truth_twist = (0.0, 0.0, 0.0)
-        self.next_update_us = model.interval_us
         # [(model, its block indices in the grid)] over the robot's tree (itself first) in
         # drawing order, and those indices in one array (world_load fills both)
         self.blocks = []

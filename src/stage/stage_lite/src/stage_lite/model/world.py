@@ -32,6 +32,7 @@ import os
 import numpy as np
 
 from . import controllers, floor, grid, world_load
+from .camera import CameraRig
 from .glibc_random import Rand48, Random
 from .noise import RangerNoise
 from .pose import pose_add, stage_normalize
@@ -87,6 +88,9 @@ class World:
         self.log = controllers.default_log     # run-time errors of controllers; a node's own
         self._robot_of = {r.model: r for r in self.robots}
         self._prepare_rays()
+        # the cameras stageros publishes (camera.py); they draw before the step's moves
+        self.cameras = CameraRig(self.models, self.robots, self._statics, self.ppm,
+                                 self.window, self.warnings)
         controllers.start(self)
         if stageros:
             self.subscribe_stageros()
@@ -155,6 +159,7 @@ class World:
             r = self._robot_of.get(m)
             if r is not None:
                 self._update_position(r, dt, scheduler.subscribed(m))
+        self.cameras.update(now)
         layer = self.updates % 2
         for r in self.robots:
             old = r.pose

@@ -18,7 +18,8 @@ import numpy as np
 
 from . import grid
 from .bodies import calc_size
-from .models import Blinkenlight, Blobfinder, Camera, Fiducial, Model
+from .camera import Camera
+from .models import Blinkenlight, Blobfinder, Fiducial, Model
 from .position import Position
 from .ranger import Ranger
 from .robot import RangerView, Robot, body_row
@@ -35,7 +36,7 @@ BUILTIN_TYPES = ('model', 'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'c
 CLASSES = {'position': Position, 'ranger': Ranger, 'fiducial': Fiducial,
            'blobfinder': Blobfinder, 'camera': Camera, 'blinkenlight': Blinkenlight}
 #: The types simulated here; the others are loaded as bodies only (with a WARN).
-SIMULATED_TYPES = ('model', 'position', 'ranger')
+SIMULATED_TYPES = ('model', 'position', 'ranger', 'camera')
 
 
 @dataclass

@@ -96,7 +96,8 @@ class RobotOutput:
 class StepOutput:
     """Every robot's output plus the global /clock and /tf."""
 
-    def __init__(self, world, names, params, on_cmd_vel):
+    def __init__(self, world, names, params, on_cmd_vel, cameras=None):
+        self.cameras = cameras      # camera_publish.CameraOutputs, or None
         self.clock_pub = unqueued_publisher('/clock', Clock)
         self.tf_pub = unqueued_publisher('/tf', TFMessage)
         self.robots = [RobotOutput(i, n, r, params, on_cmd_vel)
@@ -122,7 +123,8 @@ class StepOutput:
             return False
         waiting = {topic: sum(1 for node in nodes if node != me) for topic, nodes in subscribed}
         wanted = [(pub, waiting.get(pub.resolved_name, 0))
-                  for pub in (self.clock_pub, self.tf_pub, *self._robot_pubs)]
+                  for pub in (self.clock_pub, self.tf_pub, *self._robot_pubs,
+                              *(self.cameras.publishers if self.cameras else ()))]
         deadline = time.monotonic() + timeout_s
         while any(pub.get_num_connections() < count for pub, count in wanted):
             if time.monotonic() >= deadline:
@@ -140,6 +142,7 @@ class StepOutput:
         if any(map(has_subscribers, self._robot_pubs)):
             for output, robot in zip(self.robots, world.robots, strict=True):
                 output.collect(robot, seq, secs, nsecs, frames)
+        camera_tf = self.cameras.collect(world, secs, nsecs, frames) if self.cameras else []
         if self.publish_stall:
             for output, robot in zip(self.robots, world.robots, strict=True):
                 stall = output.stall_changed(robot)
@@ -150,6 +153,7 @@ class StepOutput:
             packed = []
             for output, robot in zip(self.robots, world.robots, strict=True):
                 packed.extend(output.transforms(robot, secs, nsecs))
+            packed.extend(camera_tf)
             frames.append((self.tf_pub, wire.tf_frame(packed)))
         if has_subscribers(self.clock_pub):
             frames.append((self.clock_pub, wire.clock_frame(secs, nsecs)))

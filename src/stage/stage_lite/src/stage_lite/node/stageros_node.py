@@ -13,11 +13,16 @@ Per robot (``/robot_<N>/...`` with several robots or -u, relative with one):
               every step, stamped with sim time (stage_ros queues 10 per subscriber;
               here each step's frames are written at once, and a subscriber that cannot
               take one whole loses that message, as with a full roscpp queue);
-              stall (std_msgs/Bool, latched, on change) with ~publish_stall only.
+              stall (std_msgs/Bool, latched, on change) with ~publish_stall only;
+              per camera on the robot (camera_publish): image (sensor_msgs/Image, rgba8),
+              depth (sensor_msgs/Image, 32FC1 m or 16UC1 mm), camera_info
+              (sensor_msgs/CameraInfo), frame camera; image_<k>, depth_<k>, camera_info_<k>,
+              camera_<k> (absolute) with several cameras.
 Global:
   Publishes   /clock (rosgraph_msgs/Clock) every step, never 0; /tf (tf2_msgs/TFMessage) every
               step, one message: odom -> base_footprint -> base_link -> base_laser_link[_k]
-              per robot; with ~publish_map: /map (nav_msgs/OccupancyGrid, latched, frame map)
+              per robot, and base_link -> camera[_k] while its image or depth is subscribed;
+              with ~publish_map: /map (nav_msgs/OccupancyGrid, latched, frame map)
               and /tf_static map -> every robot's odom (identity).
   Services    reset_positions (std_srvs/Empty): every robot to its start pose, stall cleared;
               ~save_image (course_msgs/SaveImage, with ~save_image_service only): a PNG of
@@ -34,6 +39,8 @@ Parameters (private):
       base_footprint frame), ~publish_map (bool, false), ~map_resolution (float, 0.05, m),
   ~save_image_service (bool, false): offer ~save_image;
   ~image_path (str, ~/.ros/stage_lite.png): where ~save_image writes for an empty path.
+  ~is_depth_canonical (bool, true): depth as 32FC1 metres (-inf/+inf out of range), else
+      16UC1 millimetres (0 out of range), as stageros.
 Command line: -g no window (without -g a Tk window opens when there is a display, else a
 WARN and headless), -u model names as namespaces; the world file last.
 """
@@ -53,6 +60,7 @@ from course_common.startup import init_node
 from ..view.status import RateMeter, clock_string
 from ..view.world_picture import render
 from ..view.world_view import WorldView
+from .camera_publish import CameraOutputs
 from .names import all_robot_names, shared_namespaces
 from .pacing import SimClock, Watchdog, world_speedup
 from .rospy_clock import drop_own_clock_subscription, set_own_time
@@ -79,7 +87,9 @@ class StageNode:
                                      args.use_model_names, params.tf2_frames)
         for line in shared_namespaces(self.names):
             rospy.logwarn(line)
-        self.output = StepOutput(world, self.names, params, self.on_cmd_vel)
+        self.cameras = CameraOutputs(world, self.names, args.use_model_names,
+                                     params.tf2_frames, params.is_depth_canonical)
+        self.output = StepOutput(world, self.names, params, self.on_cmd_vel, self.cameras)
         self.view = WorldView(world)
         self.rate = RateMeter()           # the real-time factor of the status line
         self.loop = StepLoop(self.step, world.interval_sim_s, node_speedup(world, params),

@@ -27,6 +27,7 @@ class StageParams:
     map_resolution_m: float = 0.05
     save_image_service: bool = False
     image_path: str = DEFAULT_IMAGE_PATH
+    is_depth_canonical: bool = True    # stageros's: depth 32FC1 in m, else 16UC1 in mm
 
 
 def _speedup(value):
@@ -55,4 +56,6 @@ def load_params():
         save_image_service=check_flag('~save_image_service',
                                       get_private('save_image_service', False)),
         image_path=check_text('~image_path', get_private('image_path', DEFAULT_IMAGE_PATH),
-                              'a non-empty path', strip=False))
+                              'a non-empty path', strip=False),
+        is_depth_canonical=check_flag('~is_depth_canonical',
+                                      get_private('is_depth_canonical', True)))

@@ -48,7 +48,13 @@ def transform_quaternion(yaw):
     and its transforms are sent: Matrix3x3::setRotation, then getRotation (Bullet's
     algorithm; it gives -q for yaws between -180 and -120 degrees, and may change the last
     bit)."""
-    x, y, z, w = yaw_quaternion(yaw)
+    return matrix_round_trip(yaw_quaternion(yaw))
+
+
+def matrix_round_trip(quaternion):
+    """(x, y, z, w) after tf::Matrix3x3::setRotation and getRotation (Bullet's algorithm), as
+    a tf::Transform made from it gives it back."""
+    x, y, z, w = quaternion
     s = 2.0 / (x * x + y * y + z * z + w * w)
     xs, ys, zs = x * s, y * s, z * s
     wx, wy, wz = w * xs, w * ys, w * zs
