@@ -1,4 +1,5 @@
-"""stage_lite.model.warmup leaves no kernel of the model to compile at a stageros's start.
+"""stage_lite.model.warmup leaves no kernel of the model, nor of Stage's controllers, to
+compile at a stageros's start.
 
 warm() runs in a fresh interpreter; then every kernel Python calls (a numba function no other
 kernel calls) must have been compiled or loaded from numba's cache. A kernel that only other
@@ -15,12 +16,14 @@ pytest.importorskip('numba')
 
 CHECK = '''
 import importlib, inspect, json, pkgutil, re
+import stage_lite.controllers as controllers
 import stage_lite.model as model
 from stage_lite.model import warmup
 warmup.warm()
 kernels = {}
-for info in pkgutil.iter_modules(model.__path__):
-    module = importlib.import_module('stage_lite.model.' + info.name)
+for package in (model, controllers):
+  for info in pkgutil.iter_modules(package.__path__):
+    module = importlib.import_module(package.__name__ + '.' + info.name)
     for name, obj in vars(module).items():
         if getattr(obj, 'py_func', None) is not None and obj.py_func.__module__ == module.__name__:
             kernels['%s.%s' % (info.name, name)] = obj
@@ -38,5 +41,5 @@ def test_warm_compiles_every_kernel_python_calls():
                          check=True).stdout
     result = json.loads(out.strip().splitlines()[-1])
     assert {'grid.move', 'grid.redraw', 'raytrace.cast_scans', 'raytrace.cast_scans_parallel',
-            'raytrace.trace', 'image._trace'} <= set(result['kernels'])
+            'raytrace.trace', 'image._trace', 'wander._decide'} <= set(result['kernels'])
     assert result['left'] == [], 'warmup.warm() never calls %s' % result['left']

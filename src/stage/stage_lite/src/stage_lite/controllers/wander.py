@@ -7,6 +7,7 @@ division), the left half i > n/2, the right half the rest; the turn lasts random
 updates, drawn from the world's random() stream when an avoidance starts.
 """
 import numpy as np
+from stage_lite.model.jit import njit
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s, while turning away
@@ -45,15 +46,28 @@ def find_laser(model):
 def decide(scan):
     """(obstruction ahead, something too close, nearest on the left, nearest on the right)
     of a scan, by Stage's beam rule."""
-    n = len(scan)
-    index = np.arange(n)
-    middle = (index > n // 3) & (index < n - n // 3)
-    obstruction = bool(np.any(scan[middle] < MIN_FRONT_DISTANCE))
-    stop = bool(np.any(scan < STOP_DISTANCE))
-    left = index > n // 2
-    min_left = float(np.min(scan[left])) if left.any() else 1e6
-    min_right = float(np.min(scan[~left])) if (~left).any() else 1e6
-    return obstruction, stop, min(min_left, 1e6), min(min_right, 1e6)
+    obstruction, stop, min_left, min_right = _decide(np.asarray(scan, np.float64))
+    return bool(obstruction), bool(stop), min_left, min_right
+
+
+@njit(cache=True)
+def _decide(scan):
+    n = scan.shape[0]
+    obstruction = False
+    stop = False
+    min_left = 1e6
+    min_right = 1e6
+    for i in range(n):
+        r = scan[i]
+        if i > n // 3 and i < n - n // 3 and r < MIN_FRONT_DISTANCE:
+            obstruction = True
+        if r < STOP_DISTANCE:
+            stop = True
+        if i > n // 2:
+            min_left = min(min_left, r)
+        else:
+            min_right = min(min_right, r)
+    return obstruction, stop, min_left, min_right
 
 
 class Wanderer:

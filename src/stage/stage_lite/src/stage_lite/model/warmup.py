@@ -6,8 +6,8 @@ numba compiles the model's kernels (jit.py) at their first call and keeps them i
 starts in a fraction of a second instead of a few seconds. A small world with a floor plan,
 a body, a robot that moves into it, a camera, two lasers whose rays numba's threads share
 and one whose few rays are cast in the calling thread (with angular noise, and Stage's
-lasernoise controller on it) calls every kernel with the argument types stageros uses
-(test_stage_warmup.py checks that none is left out).
+lasernoise controller on it) and Stage's wander on one robot calls every kernel with the
+argument types stageros uses (test_stage_warmup.py checks that none is left out).
 """
 import os
 import sys
@@ -22,7 +22,8 @@ define short_laser ranger ( sensor( range [ 0 5 ] fov 180 samples 5 noise [ 0.01
 model( bitmap "plan.pgm" size [ 2 2 0.5 ] pose [ 0 0 0 10 ] )
 model( pose [ 0.6 0 0 0 ] size [ 0.1 0.3 0.5 ] )
 position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) )
-position( pose [ -0.6 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) camera( resolution [ 8 6 ] ) )
+position( pose [ -0.6 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) camera( resolution [ 8 6 ] )
+          ctrl "wander" )
 position( pose [ 0 -0.6 0 0 ] size [ 0.3 0.3 0.2 ] short_laser( ) )
 '''
 

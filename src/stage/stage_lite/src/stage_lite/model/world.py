@@ -252,6 +252,7 @@ class World:
             self._sensor_ids.setdefault(g, []).append(k)
         self._all_sensors = list(range(len(self._sensors)))
         self._rays = self._ray_tables(self._all_sensors)
+        self._subset_cache = {}
         offsets = self._rays['offsets']
         self._beam_ranges = np.zeros(int(offsets[-1]), np.float64)
         self._beam_intensities = np.zeros(int(offsets[-1]), np.float64)
@@ -281,6 +282,17 @@ class World:
             root=np.array([g.root.index for g, _ in sensors], np.int64),
             origins=np.empty((len(sensors), 4), np.float64))
 
+    def _subset_tables(self, positions):
+        """_ray_tables of some sensors, kept for the next step that casts the same ones (in
+        Stage's own program only the controllers' rangers update, the same every step)."""
+        key = tuple(positions)
+        cached = self._subset_cache.get(key)
+        if cached is None:
+            if len(self._subset_cache) > 64:
+                self._subset_cache.clear()
+            cached = self._subset_cache[key] = self._ray_tables(positions)
+        return cached
+
     def _refresh_views(self, rangers):
         """stageros's views of the rangers that updated: their first sensor's readings."""
         views = self._views_of
@@ -300,8 +312,8 @@ class World:
             layer = (self.updates + 1) % 2
         due = self._all_sensors if due is None else due
         every = len(due) == len(self._sensors)
-        tables = self._rays if every else self._ray_tables(sorted(due))
         positions = self._all_sensors if every else sorted(due)
+        tables = self._rays if every else self._subset_tables(positions)
         origins = tables['origins']
         for i, k in enumerate(positions):
             g, s = self._sensors[k]
