@@ -17,8 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import grid
+from .blobfinder import Blobfinder
 from .bodies import calc_size
-from .models import Blinkenlight, Blobfinder, Camera, Fiducial, Model
+from .fiducial import Fiducial
+from .models import Blinkenlight, Camera, Model
 from .position import Position
 from .ranger import Ranger
 from .robot import RangerView, Robot, body_row
