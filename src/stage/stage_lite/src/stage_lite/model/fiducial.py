@@ -19,8 +19,10 @@ An update (ModelFiducial::Update, then AddModelIfVisible per candidate):
    y, bounded by a stack-allocated dummy model whose address ranks above every model's, so
    a tie at the low edge falls outside and one at the high edge inside);
 2. in Stage's ORDER, that of the models' addresses (the candidates are the intersection of
-   two std::sets of pointers), i.e. the order Stage allocated them: the world file's order
-   (STAGE_MODEL_POINTER_ORDER; glibc's heap hands out rising addresses while a world loads);
+   two std::sets of pointers, so neither x nor y orders them), taken here as the order Stage
+   created them, the world file's (STAGE_MODEL_POINTER_ORDER: glibc's heap mostly hands out
+   rising addresses while a world loads, but a model put in a hole freed earlier, below the
+   models before it, would come first in Stage; not yet checked against real Stage);
 3. each candidate is kept if its fiducial_key equals the finder's, range = hypot(dy, dx) <
    range_max, |normalize(atan2(dy, dx) - finder heading)| <= fov / 2, it is not related to the
    finder (another tree of models), and a ray from the finder (its global pose + origin,
