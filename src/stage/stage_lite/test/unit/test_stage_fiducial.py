@@ -2,8 +2,11 @@
 sees, what hides a model from it, its readings' fields and their order."""
 import math
 
+import numpy as np
 import pytest
+from stage_lite.model import raytrace
 from stage_lite.model.fiducial import Fiducial, FiducialIndex
+from stage_lite.model.ranger import Ranger
 from stage_lite.model.sight import Sight
 from stage_lite.model.world import load_world
 
@@ -234,3 +237,29 @@ def test_a_finder_on_a_static_model_sees_past_its_own_body(tmp_path):
               'model( name "box" pose [ 2 0 0 0 ] size [ 0.3 0.3 0.5 ] fiducial_return 7 )')
     assert s.seen() == [('box', 7)]
 
+
+
+def test_sights_rays_are_the_rangers_where_their_rules_agree(tmp_path):
+    # every model seen by rangers, the beam at the finders' height: the same walk, the same hits
+    s = Scene(tmp_path, 'define laser ranger ( sensor( range [ 0 6 ] fov 360 samples 721 ) )\n'
+              'position( name "me" pose [ 0.13 -0.27 0 10 ] size [ 0.4 0.4 0.25 ] laser( ) )\n'
+              'position( name "you" pose [ 1.5 1.1 0 0 ] size [ 0.5 0.3 0.5 ] )\n'
+              'model( pose [ -2 0.3 0 25 ] size [ 0.3 2 1 ] )\n'
+              'model( pose [ 0.4 -3.3 0 0 ] size [ 4 0.2 1 ] ranger_return 0 )\n'
+              'model( pose [ 3.7 -1.1 0 60 ] size [ 1 1 0.4 ] )')
+    w = s.world
+    w.set_command(0, 0.3, 0.0, 0.4)
+    w.set_command(1, -0.2, 0.0, -0.3)
+    for _ in range(5):
+        w.step()
+    view = w.robots[0].rangers[0]
+    origin = view.model.ray_origin(view.sensor)
+    angles = np.empty(view.samples)
+    raytrace.sample_angles(origin[3], Ranger.sample_increment(view.sensor), view.samples,
+                           angles, 0)
+    ranges, hits = s.sight.cast(origin, angles, view.range_max, view.model, True,
+                                w.updates % 2)
+    assert (hits >= 0).sum() > 300
+    np.testing.assert_array_equal(ranges.astype(np.float32), view.ranges)
+    rr = np.where(hits >= 0, w.space.model_rr[np.maximum(hits, 0)], 0.0)
+    np.testing.assert_array_equal(rr.astype(np.float32), view.intensities)
