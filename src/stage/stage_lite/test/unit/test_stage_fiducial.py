@@ -1,6 +1,8 @@
 """Stage's fiducial finder (stage_lite.model.fiducial, its rays through sight.py): what a finder
-sees, what hides a model from it, its readings' fields and their order."""
+sees, what hides a model from it, its readings' fields and their order; with the blobfinder,
+every digit of real Stage's first readings on two worlds."""
 import math
+import os
 
 import numpy as np
 import pytest
@@ -11,6 +13,52 @@ from stage_lite.model.sight import Sight
 from stage_lite.model.world import load_world
 
 ROBOT = 'size [ 0.4 0.4 0.25 ]'      # the finder on it looks from z = 0.25
+WORLDS = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'worlds')
+
+#: Real Stage 4.3.0's first readings (stage -g, a controller subscribing the finders and
+#: printing every digit): per robot, its blobfinder's blobs (colour r g b, left top right
+#: bottom, range), then its fiducial finder's readings (model, range, bearing, geom, id).
+REAL_STAGE = {
+    'finders_a.world': {
+        'me': ([
+            '0 0 1 55 26 60 34 2.0133932265918939',
+            '0 0 1 39 28 41 32 4.2664040585784422',
+            '0 1 0 12 25 20 35 1.6972934431514155',
+        ], [
+            'you 1.9374725804511403 0.6108652381980153 0.5 0.29999999999999999 0.5'
+            ' 0.4014257279586958 5',
+            'seen 2.1637467504308359 -0.46997376234315291 0.29999999999999999'
+            ' 0.29999999999999999 0.5 -0.52359877559829882 7',
+            'far 4.4210632205386977 -0.022399503895111861 0.29999999999999999'
+            ' 0.29999999999999999 0.5 -0.17453292519943295 0',
+            'behind 3.3301351323932789 1.5865919412873708 0.29999999999999999'
+            ' 0.29999999999999999 0.5 -0.17453292519943295 0',
+        ]),
+    },
+    'finders_b.world': {
+        'me': ([
+            '0.30196078431372547 0.30196078431372547 0.30196078431372547 68 15 100 15'
+            ' 3.7008340932919097',
+            '0 0 1 58 14 66 16 2.1089028093200941',
+            '1 0 0 51 14 56 16 1.923577792511866',
+            '0.30196078431372547 0.30196078431372547 0.30196078431372547 21 15 49 15'
+            ' 4.2524680432255604',
+            '0 1 0 13 14 19 16 1.7336639488050081',
+            '0.30196078431372547 0.30196078431372547 0.30196078431372547 0 15 11 15'
+            ' 4.8180635610068361',
+        ], [
+            'you 2.0064396327824068 1.1461657545353301 0.5 0.29999999999999999 0.5'
+            ' 1.0995574287564276 5',
+            'r1 2.0634437234875098 0.16199203805913315 0.29999999999999999'
+            ' 0.29999999999999999 0.5 0.69813170079773179 3',
+            'b2 2.3438856627403992 -0.079787229729863962 0.29999999999999999'
+            ' 0.29999999999999999 0.050000000000000003 0.69813170079773179 4',
+            'o1 2.1292721761202817 -1.7461450629066722 0.59999999999999998'
+            ' 0.20000000000000001 1.5 1.7453292519943293 6',
+        ]),
+        'you': ([], None),
+    },
+}
 
 
 def world(tmp_path, body):
@@ -173,6 +221,17 @@ def test_readings_come_in_the_models_load_order_not_by_distance(tmp_path):
     assert s.seen() == [('far', 1), ('near', 2), ('mid', 3), ('left', 4)]
 
 
+def test_the_order_can_be_real_stages_address_order(tmp_path):
+    # fasr.world's charge stations, file order 1..7, come 1 3 2 6 4 5 7 out of real Stage
+    s = one_target(tmp_path, '\n'.join(
+        'model( name "c%d" pose [ %r %r 0 0 ] size [ 0.2 0.2 0.5 ] fiducial_return 2 )'
+        % (k, 2 * math.cos(math.radians(20 * (k - 4))), 2 * math.sin(math.radians(20 * (k - 4))))
+        for k in range(1, 8)))
+    order = {'c%d' % k: i for i, k in enumerate([1, 3, 2, 6, 4, 5, 7])}
+    s.index = FiducialIndex(s.world.models, rank=lambda m: order[m.name])
+    assert [name for name, _ in s.seen()] == ['c1', 'c3', 'c2', 'c6', 'c4', 'c5', 'c7']
+
+
 def test_set_return_at_run_time_is_honoured_from_the_next_step(tmp_path):
     s = one_target(tmp_path, 'model( name "box" pose [ 2 0 0 0 ] size [ 0.3 0.3 0.5 ] )')
     box = s.model('box')
@@ -263,3 +322,27 @@ def test_sights_rays_are_the_rangers_where_their_rules_agree(tmp_path):
     np.testing.assert_array_equal(ranges.astype(np.float32), view.ranges)
     rr = np.where(hits >= 0, w.space.model_rr[np.maximum(hits, 0)], 0.0)
     np.testing.assert_array_equal(rr.astype(np.float32), view.intensities)
+
+
+def _g(x):
+    return '%.17g' % x
+
+
+@pytest.mark.parametrize('name', sorted(REAL_STAGE))
+def test_every_digit_of_real_stages_first_readings(name):
+    w = load_world(os.path.join(WORLDS, name))
+    index = FiducialIndex(w.models)
+    sight = Sight(w.models, w.robots, w.space)
+    layer = (w.updates + 1) % 2
+    index.begin_step()
+    for robot, (blobs, fiducials) in REAL_STAGE[name].items():
+        carried = next(m for m in w.models if m.name == robot).children
+        eye = next(m for m in carried if m.kind == 'blobfinder')
+        assert [' '.join([_g(c) for c in b.color[:3]] + [str(b.left), str(b.top), str(b.right),
+                                                           str(b.bottom), _g(b.range)])
+                for b in eye.update(sight, layer)] == blobs
+        if fiducials is not None:
+            finder = next(m for m in carried if m.kind == 'fiducial')
+            readings = finder.update(index, sight, layer)
+            assert [' '.join([r.model.name] + [_g(v) for v in (r.range, r.bearing) + r.geom]
+                             + [str(r.id)]) for r in readings] == fiducials

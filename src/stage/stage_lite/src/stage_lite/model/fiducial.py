@@ -18,11 +18,14 @@ An update (ModelFiducial::Update, then AddModelIfVisible per candidate):
    (x, y) the finder's global position (STAGE_FIDUCIAL_BOX: Stage's sets sorted by x and by
    y, bounded by a stack-allocated dummy model whose address ranks above every model's, so
    a tie at the low edge falls outside and one at the high edge inside);
-2. in Stage's ORDER, that of the models' addresses (the candidates are the intersection of
-   two std::sets of pointers, so neither x nor y orders them), taken here as the order Stage
-   created them, the world file's (STAGE_MODEL_POINTER_ORDER: glibc's heap mostly hands out
-   rising addresses while a world loads, but a model put in a hole freed earlier, below the
-   models before it, would come first in Stage; not yet checked against real Stage);
+2. in Stage's ORDER, that of the models' addresses in its heap (the candidates are the
+   intersection of two std::sets of pointers: neither x nor y orders them). That order
+   follows no rule of the world (STAGE_MODEL_POINTER_ORDER): real Stage 4.3.0 (`stage -g`,
+   built on this kind of machine) puts fasr.world's seven charge stations, in file order
+   1..7, in the order 1 3 2 6 4 5 7, and pioneer_flocking.world's 100 robots in a shuffle
+   starting 0 2 4 14 56 3 12; the same at every run of the same program, but a program that
+   allocates otherwise before loading (stageros, the GUI) may differ. Here the order is the
+   world file's unless the FiducialIndex is given the real one (`rank`);
 3. each candidate is kept if its fiducial_key equals the finder's, range = hypot(dy, dx) <
    range_max, |normalize(atan2(dy, dx) - finder heading)| <= fov / 2, it is not related to the
    finder (another tree of models), and a ray from the finder (its global pose + origin,
@@ -76,9 +79,12 @@ class FiducialIndex:
     """World::models_with_fiducials and its two sets sorted by x and by y.
 
     models: the world's models in load order; each with fiducial_return != 0 is inserted as
-    Model::Load's SetFiducialReturn does."""
+    Model::Load's SetFiducialReturn does. rank(model): its place in Stage's order of
+    addresses (STAGE_MODEL_POINTER_ORDER), default its load index: give it the order a
+    capture of real Stage printed to replay that run."""
 
-    def __init__(self, models):
+    def __init__(self, models, rank=None):
+        self.rank = rank if rank is not None else (lambda m: m.index)
         self.models = []      # Stage's vector: insertion order (erase, then push_back)
         for m in models:
             self.set_return(m, m.fiducial_return)
@@ -103,17 +109,17 @@ class FiducialIndex:
 
     def begin_step(self):
         """World::Update's first work: the sets sorted by global x and by global y (ties by
-        address: load order) rebuilt from the fiducial-bearing models' poses now."""
-        poses = [(m.global_pose(), m) for m in self.models]
-        self._by_x = [m for _, m in sorted(poses, key=lambda t: (t[0][0], t[1].index))]
-        self._by_y = [m for _, m in sorted(poses, key=lambda t: (t[0][1], t[1].index))]
+        address: rank) rebuilt from the fiducial-bearing models' poses now."""
+        poses = [(m.global_pose(), self.rank(m), m) for m in self.models]
+        self._by_x = [m for _, _, m in sorted(poses, key=lambda t: (t[0][0], t[1]))]
+        self._by_y = [m for _, _, m in sorted(poses, key=lambda t: (t[0][1], t[1]))]
 
     def nearby(self, x, y, rng):
         """The candidates of a finder at global (x, y) with range rng, in Stage's order
         (STAGE_FIDUCIAL_BOX, STAGE_MODEL_POINTER_ORDER in the module docstring)."""
         horiz = _above(self._by_x, 0, x - rng, x + rng)
         vert = _above(self._by_y, 1, y - rng, y + rng)
-        return sorted(horiz & vert, key=lambda m: m.index)
+        return sorted(horiz & vert, key=self.rank)
 
 
 def _above(ordered, axis, lo, hi):
