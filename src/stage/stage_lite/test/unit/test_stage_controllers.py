@@ -254,3 +254,35 @@ def test_a_broken_python_controller_is_one_error_naming_the_world_line(tmp_path,
         load_world(path, stageros=False)
     assert str(err.value).startswith('%s:%d: ctrl "broken"' % (path, 5)) and what in str(
         err.value), err.value
+
+
+FLOCK = '''define sonars ranger( %s )
+define finder fiducial( range_max 5 fov 360 )
+define bot position( size [ 0.44 0.38 0.22 ] fiducial_return 1 sonars( ) finder( ) )
+bot( name "a" pose [ -2 0.3 0 0 ] ctrl "pioneer_flocking" )
+bot( name "b" pose [ 0 1.6 0 40 ] )
+''' % ' '.join('sensor( pose [ 0 0 0 %d ] range [ 0 5 ] fov 15 samples 1 )' % a
+               for a in (90, 50, 30, 10, -10, -30, -50, -90))
+
+
+def test_pioneer_flocking_turns_toward_the_heading_of_the_robot_its_finder_sees(tmp_path):
+    w = load_world(world_file(tmp_path, FLOCK), stageros=False)
+    sonars, finder = (w.handle(m) for m in w.models[2:4])
+    assert (sonars.type, finder.type) == ('ranger', 'fiducial')
+    for _ in range(3):
+        w.step()
+    seen = finder.fiducials
+    assert [(f.model.token, f.id) for f in seen] == [('b', 1)]
+    (ax, ay, aa), (bx, by, ba) = (r.pose for r in w.robots)
+    assert seen[0].range == pytest.approx(math.hypot(bx - ax, by - ay), abs=1e-9)
+    heading_error = seen[0].geom[3]
+    assert heading_error == pytest.approx(ba - aa, abs=1e-9)
+    # the sonars' resultant, and the nearest robot's heading: both turn it (gain 0.3 each)
+    first = [s.ranges[0] for s in sonars.sensors]
+    headings = [s.pose.a for s in sonars.sensors]
+    resultant = math.atan2(sum(r * math.sin(a) for r, a in zip(first, headings, strict=True)),
+                           sum(r * math.cos(a) for r, a in zip(first, headings, strict=True)))
+    goal = w.robots[0].goal
+    assert goal[0] == 0.4
+    assert goal[3] == pytest.approx(0.3 * resultant + 0.3 * heading_error, abs=0.01)
+    assert abs(0.3 * heading_error) > 0.1

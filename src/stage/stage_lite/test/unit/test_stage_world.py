@@ -216,7 +216,7 @@ def test_missing_world(tmp_path):
     ('position( localization "slam" )', 'unknown localization "slam"'),
     ('threads 0', 'threads set to <1. Forcing to 1'),
     ('camera( )', 'camera camera:0 is not on a position model: stageros publishes nothing'),
-    ('fiducial( )', 'fiducial models are not simulated here'),
+    ('gripper( )', 'gripper models are not simulated here'),
     ('model( laser_return 1 )', 'property laser_return is defined but not used'),
 ])
 def test_what_stage_accepts_with_a_warning(tmp_path, text, warning):

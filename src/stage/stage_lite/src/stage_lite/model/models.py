@@ -127,6 +127,10 @@ class Model:
         self.stack_children = True
         self.obstacle_return = True
         self.ranger_return = 1.0
+        # Model::Visibility's, for the fiducial finders and blobfinders (fiducial.py)
+        self.fiducial_return = 0
+        self.fiducial_key = 0
+        self.blob_return = True
         self.interval_us = DEFAULT_INTERVAL_US
         self.ctrl = []           # [(the ctrl string, world file, line)]
         self.bitmap = None
@@ -198,7 +202,7 @@ class Model:
     def load(self, wf, rng):
         e = self.entity
         for name in ('event_queue', 'watts', 'give_watts', 'take_watts', 'debug', 'mass',
-                     'blob_return', 'fiducial_key', 'fiducial_return', 'gripper_return',
+                     'gripper_return',
                      'gui_nose', 'gui_grid', 'gui_outline', 'gui_move', 'map_resolution',
                      'say', 'trail_length', 'trail_interval', 'alwayson', 'joules',
                      'joules_capacity', 'kjoules', 'kjoules_capacity', 'friction'):
@@ -228,6 +232,9 @@ class Model:
         self.stack_children = bool(wf.read_int(e, 'stack_children', 1))
         self.obstacle_return = bool(wf.read_int(e, 'obstacle_return', 1))
         self.ranger_return = wf.read_float(e, 'ranger_return', self.ranger_return)
+        self.blob_return = wf.read_int(e, 'blob_return', int(self.blob_return)) != 0
+        self.fiducial_key = wf.read_int(e, 'fiducial_key', self.fiducial_key)
+        self.fiducial_return = wf.read_int(e, 'fiducial_return', self.fiducial_return)
         ctrl = wf.read_values(e, 'ctrl')
         if ctrl is not None:
             # each value is one controller, "name args" (controllers.py starts them)

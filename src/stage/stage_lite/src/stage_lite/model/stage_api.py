@@ -9,7 +9,7 @@ f(model, arg), model being the same object; one that returns a true value is rem
 Stage. No rospy.
 """
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from .pose import pose_add, stage_normalize
 from .scheduler import CB_FLAGDECR, CB_FLAGINCR
@@ -281,6 +281,32 @@ class RangerApi(ModelApi):
         return self.sensors
 
 
+class FiducialApi(ModelApi):
+    """Stage's ModelFiducial: `fiducials`, what its last update saw (each with `range`,
+    `bearing`, `geom` (his size x, y, z, his heading relative to the finder's), `pose` (his
+    global pose), `id`, and `model`, him as a controller sees him)."""
+
+    @property
+    def fiducials(self):
+        return [replace(f, model=api_of(self._world, f.model))
+                for f in getattr(self._model, 'fiducials', [])]
+
+    def get_fiducials(self):
+        return self.fiducials
+
+
+class BlobfinderApi(ModelApi):
+    """Stage's ModelBlobfinder: `blobs`, what its last update saw (colour, left, top, right,
+    bottom, range)."""
+
+    @property
+    def blobs(self):
+        return list(getattr(self._model, 'blobs', []))
+
+    def get_blobs(self):
+        return self.blobs
+
+
 def world_api(world):
     api = getattr(world, '_world_api', None)
     if api is None:
@@ -293,7 +319,8 @@ def api_of(world, model):
     handles = world.__dict__.setdefault('_handles', {})
     handle = handles.get(model)
     if handle is None:
-        cls = {'position': PositionApi, 'ranger': RangerApi}.get(model.kind, ModelApi)
+        cls = {'position': PositionApi, 'ranger': RangerApi, 'fiducial': FiducialApi,
+               'blobfinder': BlobfinderApi}.get(model.kind, ModelApi)
         handle = handles[model] = cls(world, model)
     return handle
 

@@ -4,10 +4,11 @@ stage_lite.model.warmup` (./ws build runs it).
 numba compiles the model's kernels (jit.py) at their first call and keeps them in its cache
 (__pycache__ beside the sources, or NUMBA_CACHE_DIR); a stageros that finds them there
 starts in a fraction of a second instead of a few seconds. A small world with a floor plan,
-a body, a robot that moves into it, a camera, two lasers whose rays numba's threads share
-and one whose few rays are cast in the calling thread (with angular noise, and Stage's
-lasernoise controller on it) and Stage's wander on one robot calls every kernel with the
-argument types stageros uses (test_stage_warmup.py checks that none is left out).
+a body, a robot that moves into it, a camera, a fiducial finder and a blobfinder, two lasers
+whose rays numba's threads share and one whose few rays are cast in the calling thread (with
+angular noise, and Stage's lasernoise controller on it) and Stage's wander on one robot
+calls every kernel with the argument types stageros uses (test_stage_warmup.py checks that
+none is left out).
 """
 import os
 import sys
@@ -20,8 +21,8 @@ define laser ranger ( sensor( range [ 0 5 ] fov 180 samples %d ) )
 define short_laser ranger ( sensor( range [ 0 5 ] fov 180 samples 5 noise [ 0.01 0.01 1 ] )
                            ctrl "lasernoise" )
 model( bitmap "plan.pgm" size [ 2 2 0.5 ] pose [ 0 0 0 10 ] )
-model( pose [ 0.6 0 0 0 ] size [ 0.1 0.3 0.5 ] )
-position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) )
+model( pose [ 0.6 0 0 0 ] size [ 0.1 0.3 0.5 ] fiducial_return 1 )
+position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) fiducial( ) blobfinder( ) )
 position( pose [ -0.6 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) camera( resolution [ 8 6 ] )
           ctrl "wander" )
 position( pose [ 0 -0.6 0 0 ] size [ 0.3 0.3 0.2 ] short_laser( ) )
@@ -45,6 +46,21 @@ def warm():
         for robot in (world.robots[0], world.robots[2]):   # the threads', then this one's
             world.scan_from(robot.rangers[0], robot.model.pose)
         world.occupancy()
+        warm_sensors(world)
+
+
+def warm_sensors(world):
+    """The fiducial finder's and the blobfinder's rays (sight.py's kernel)."""
+    from .fiducial import FiducialIndex
+    from .sight import Sight
+    sight = Sight(world.models, world.robots, world.space)
+    index = FiducialIndex(world.models)
+    layer = (world.updates + 1) % 2
+    for m in world.models:
+        if m.kind == 'fiducial':
+            m.update(index, sight, layer)
+        elif m.kind == 'blobfinder':
+            m.update(sight, layer)
 
 
 def main():

@@ -9,8 +9,8 @@ A model updates only while subscribed (scheduler.py): stageros subscribes every 
 rangers it carries (World(stageros=True), the default), Stage's own `stage` program nothing
 but what the controllers subscribe. One step (World::Update), sim time first advanced by
 interval_sim:
-1. queue 0's due models, in the order Stage's event queue gives them: each position model
-   turns its goal (the last cmd_vel or controller command) into its velocity (velocity,
+1. queue 0's due models, in the order Stage's event queue gives them (a blobfinder scans;
+   fiducial.py, blobfinder.py): each position model turns its goal (the last cmd_vel or controller command) into its velocity (velocity,
    acceleration or position control; clamped to velocity_bounds, `car` steering converted)
    and updates its estimate: the world pose before this step's move (`gps`), or the
    velocity integrated with its odom_error (`odom`, from 0 0 0);
@@ -21,7 +21,8 @@ interval_sim:
 3. the workers' due models, queue by queue: each ranger casts every sensor's rays from its
    robot's pose after the move, through layer ((updates + 1) % 2): the bodies as drawn in
    the previous step (STAGE_RAYS_READ_LAST_LAYER; in Stage the rangers run in worker threads
-   beside the moves), then draws its noise from random() beam by beam (noise.py);
+   beside the moves), then draws its noise from random() beam by beam (noise.py); each
+   fiducial finder looks for the fiducial-bearing models around it;
 4. the update callbacks of every model that updated (the controllers), queue by queue, then
    the world's callbacks;
 5. stageros publishes: odom = the estimate and the velocity, ground truth = the world pose.
@@ -32,13 +33,16 @@ import os
 import numpy as np
 
 from . import controllers, floor, grid, world_load
+from .blobfinder import Blobfinder
 from .camera import CameraRig
+from .fiducial import Fiducial, FiducialIndex
 from .glibc_random import Rand48, Random
 from .noise import RangerNoise
 from .pose import pose_add, stage_normalize
 from .ranger import Ranger
 from .robot import body_row
 from .scheduler import CB_UPDATE, Scheduler
+from .sight import Sight
 from .stage_api import api_of
 from .worldfile import WorldError
 
@@ -73,6 +77,7 @@ class World:
         self.robots = loaded.robots
         self.space = loaded.space
         self.warnings = loaded.warnings
+        self.stageros_warnings = loaded.stageros_warnings
         self._ray_zs = loaded.ray_zs
         self._statics = loaded.statics
         self._static_cells = loaded.static_cells
@@ -88,6 +93,9 @@ class World:
         self.log = controllers.default_log     # run-time errors of controllers; a node's own
         self._robot_of = {r.model: r for r in self.robots}
         self._prepare_rays()
+        # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
+        self.fiducial_index = FiducialIndex(self.models)
+        self.sight = Sight(self.models, self.robots, self.space)
         # the cameras stageros publishes (camera.py); they draw before the step's moves
         self.cameras = CameraRig(self.models, self.robots, self._statics, self.ppm,
                                  self.window, self.warnings)
@@ -154,11 +162,14 @@ class World:
         now = self.sim_time_us
         dt = self.interval_us / 1e6
         scheduler = self.scheduler
+        self.fiducial_index.begin_step()
         updated = [scheduler.due(0, now)]
         for m in updated[0]:
             r = self._robot_of.get(m)
             if r is not None:
                 self._update_position(r, dt, scheduler.subscribed(m))
+            elif isinstance(m, Blobfinder):
+                m.update(self.sight, (self.updates + 1) % 2)
         self.cameras.update(now)
         layer = self.updates % 2
         for r in self.robots:
@@ -174,6 +185,10 @@ class World:
         if rangers:
             self.cast_rays([k for g in rangers for k in self._sensor_ids[g]],
                            (self.updates + 1) % 2)
+        for models in updated[1:]:
+            for m in models:
+                if isinstance(m, Fiducial):
+                    m.update(self.fiducial_index, self.sight, (self.updates + 1) % 2)
         for models in updated:
             for m in models:
                 if scheduler.has_callbacks(m, CB_UPDATE):

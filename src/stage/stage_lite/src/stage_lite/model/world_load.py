@@ -17,9 +17,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import grid
+from .blobfinder import Blobfinder
 from .bodies import calc_size
 from .camera import Camera
-from .models import Blinkenlight, Blobfinder, Fiducial, Model
+from .fiducial import Fiducial
+from .models import Blinkenlight, Model
 from .position import Position
 from .ranger import Ranger
 from .robot import RangerView, Robot, body_row
@@ -36,7 +38,7 @@ BUILTIN_TYPES = ('model', 'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'c
 CLASSES = {'position': Position, 'ranger': Ranger, 'fiducial': Fiducial,
            'blobfinder': Blobfinder, 'camera': Camera, 'blinkenlight': Blinkenlight}
 #: The types simulated here; the others are loaded as bodies only (with a WARN).
-SIMULATED_TYPES = ('model', 'position', 'ranger', 'camera')
+SIMULATED_TYPES = ('model', 'position', 'ranger', 'camera', 'fiducial', 'blobfinder')
 
 
 @dataclass
@@ -56,6 +58,8 @@ class LoadedWorld:
     statics: list            # the models that never move
     static_cells: tuple      # their outline cells: (x, y) int32 arrays
     warnings: list           # loading's warnings, then Stage's "defined but not used"
+    stageros_warnings: list  # what stageros cannot publish (rangers without or with several
+                             # sensors); Stage's own program has nothing to say of them
     threads: int = 1         # Stage's worker threads (at least 1): its event queues 1..threads
     paused: bool = False     # `stage` does not start a paused world
     show_clock: bool = False  # `stage` prints its clock line every show_clock_interval steps
@@ -86,10 +90,13 @@ def load(path, rng):
             wf.read_string(0, name, '')
     window, models = _load_models(wf, path, rng)
     ppm = 1.0 / resolution_m
-    robots, space, ray_zs, statics, static_cells = _post_load(models, ppm, wf.warnings, path)
+    stageros_warnings = []
+    robots, space, ray_zs, statics, static_cells = _post_load(models, ppm, stageros_warnings,
+                                                              path)
     return LoadedWorld(resolution_m, ppm, interval_us, quit_time_s, speedup, window, models,
                        robots, space, ray_zs, statics, static_cells,
-                       wf.warnings + wf.unused_warnings(), threads, **flags)
+                       wf.warnings + wf.unused_warnings(), stageros_warnings, threads,
+                       **flags)
 
 
 def _load_models(wf, path, rng):

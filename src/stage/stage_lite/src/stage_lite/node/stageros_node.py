@@ -221,7 +221,7 @@ def world_or_exit(loader):
     world.log = rospy.logerr      # a controller's callback that raises: one ERROR line
     if not world.robots:
         rospy.logwarn('%s: the world has no position models: no robot topics', world.path)
-    for line in world.warnings:
+    for line in world.warnings + world.stageros_warnings:
         rospy.logwarn(line)
     return world
 
