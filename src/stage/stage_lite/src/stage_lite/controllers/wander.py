@@ -7,6 +7,7 @@ division), the left half i > n/2, the right half the rest; the turn lasts random
 updates, drawn from the world's random() stream when an avoidance starts.
 """
 import numpy as np
+
 from stage_lite.model.jit import njit
 
 CRUISE_SPEED = 0.4        # m/s
