@@ -12,8 +12,9 @@ interval_sim:
 1. queue 0's due models, in the order Stage's event queue gives them (a blobfinder scans;
    fiducial.py, blobfinder.py): each position model turns its goal (the last cmd_vel or
    controller command) into its velocity (velocity, acceleration or position control;
-   clamped to velocity_bounds, `car` steering converted) and updates its estimate: the world pose before this step's move (`gps`), or the
-   velocity integrated with its odom_error (`odom`, from 0 0 0);
+   clamped to velocity_bounds, `car` steering converted) and updates its estimate: the
+   world pose before this step's move (`gps`), or the velocity integrated with its
+   odom_error (`odom`, from 0 0 0);
 2. each subscribed position model, in file order, moves by velocity * interval (the
    translation turned by the OLD heading); its body is drawn into layer (updates % 2) at the
    new pose; if it then overlaps an obstacle of another model in that layer whose height
