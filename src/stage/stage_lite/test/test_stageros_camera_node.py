@@ -7,6 +7,7 @@ import numpy as np
 import rostest
 from course_common.testing.recorders import stamp_ns
 from sensor_msgs.msg import CameraInfo, Image
+from stage_lite.model.camera_render import SAMPLE_Y
 from stage_support import (
     EVENT_DEADLINE_S,
     START_DEADLINE_S,
@@ -64,9 +65,11 @@ class StagerosCameraTest(StageTestCase):
 
     def test_depth_reads_the_wall(self):
         depth = _pixels(Recorder(ONE + 'depth', Image, keep=1).wait_first(), '<f4')
-        tan_v = (1.0 - (np.arange(24) + 0.5) / 12.0) * math.tan(math.radians(20))
+        # each row's sample point (Stage's: not the pixel centre): the wall's foot is row 16
+        tan_v = (1.0 - (np.arange(24) + SAMPLE_Y) / 12.0) * math.tan(math.radians(20))
         z = EYE_Z_M + WALL_M * tan_v
         wall = (z >= 0.0) & (z <= WALL_TOP_M)
+        self.assertEqual(np.flatnonzero(wall).tolist(), list(range(8, 17)))
         # Stage's depth is along the view axis: the wall square to it reads its distance
         self.assertTrue(np.allclose(depth[wall], WALL_M, atol=DEPTH_TOL_M), depth[wall])
         self.assertTrue(np.isposinf(depth[0]).all(), 'above the walls: +inf (beyond far)')

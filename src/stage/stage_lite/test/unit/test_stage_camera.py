@@ -4,15 +4,21 @@ and the values Stage makes no frame of.
 
 Stage's depth is the z-buffer made linear (PerspectiveCamera::realDistance): the distance
 along the view axis, so a wall square to the view at d reads d in every pixel; the range
-along a pixel's own ray is that over the cosine of the ray's angle to the axis."""
+along a pixel's own ray is that over the cosine of the ray's angle to the axis. A pixel is
+what its sample point sees (SAMPLE_X, SAMPLE_Y from its top-left corner, not its centre), and
+a surface's window depth is pushed back by its polygon offset (factor x its depth slope per
+pixel: 2 for the floor, 0.5 for blocks)."""
 import math
 
 import numpy as np
 import pytest
 from stage_lite.model.camera_render import (
+    BLOCK_OFFSET_FACTOR,
     CLEAR_RGBA,
-    FLOOR_OFFSET_SLOPES,
+    FLOOR_OFFSET_FACTOR,
     FLOOR_RGBA,
+    SAMPLE_X,
+    SAMPLE_Y,
     gl_rgba,
 )
 from stage_lite.model.world import load_world
@@ -41,11 +47,22 @@ def frame(w, steps=1):
 
 
 def pixel_tangents(v):
-    """Each column's and row's tangent of its angle to the view axis (row 0 the top)."""
-    u = ((np.arange(v.width) + 0.5) * 2.0 / v.width - 1.0) * math.tan(math.radians(v.hfov_deg / 2))
-    t = (1.0 - (np.arange(v.height) + 0.5) * 2.0 / v.height) * math.tan(
+    """The tangents of each column's and row's sample point's angle to the view axis (row 0
+    the top)."""
+    u = ((np.arange(v.width) + SAMPLE_X) * 2.0 / v.width - 1.0) * math.tan(
+        math.radians(v.hfov_deg / 2))
+    t = (1.0 - (np.arange(v.height) + SAMPLE_Y) * 2.0 / v.height) * math.tan(
         math.radians(v.vfov_deg / 2))
     return u, t
+
+
+def window_depth(t, near=0.2, far=8.0):
+    """The GL window depth of planar depth t (glFrustum's), and back (realDistance)."""
+    return far / (far - near) * (1 - near / t)
+
+
+def real_distance(w, near=0.2, far=8.0):
+    return near * far / (far - w * (far - near))
 
 
 def test_stage_defaults(tmp_path):
@@ -98,14 +115,15 @@ def test_above_the_wall_reads_far_below_it_the_floor(tmp_path):
     below = 0.2 + 3.0 * t < 0.0
     assert below.any()
     floor_t = -0.2 / t[below]            # where each row's ray meets z = 0
-    # the floor's polygon offset: its window depth pushed back by a constant
-    n, f = 0.2, 8.0
-    scale = f / (f - n)
-    push = FLOOR_OFFSET_SLOPES * scale * n * (1 / 0.2) * 2 * math.tan(math.radians(20)) / 24
-    dwin = scale * (1 - n / floor_t) + push
+    # the floor's polygon offset: its window depth pushed back by a constant, the factor x
+    # its slope per row: scale near x d(1/t) per row = the tangent per row over the eye's
+    # height
+    slope = 8.0 / 7.8 * 0.2 * (2 * math.tan(math.radians(20)) / 24) / 0.2
+    push = FLOOR_OFFSET_FACTOR * slope
+    dwin = window_depth(floor_t) + push
     drawn = dwin < 1.0       # pushed to 1.0 or beyond, it fails the depth test: not drawn
-    assert drawn.any() and not drawn.all()
-    want = n * f / (f - dwin[drawn] * (f - n))
+    assert drawn.any()
+    want = real_distance(dwin[drawn])
     assert np.allclose(v.depth[below][drawn], want[:, None], rtol=DEPTH_TOL)
     assert (v.depth[below][~drawn] == np.float32(8.0)).all()
     assert not np.isinf(v.depth).any()   # Stage's own depth: far, not inf (stageros's)
@@ -168,8 +186,55 @@ def test_a_box_top_seen_from_above(tmp_path):
             'position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.5 ]'
             ' camera( resolution [ 1 1 ] fov [ 10 10 ] pantilt [ 0 30 ] ) )\n')
     v = frame(world(tmp_path, text=text))
-    assert v.depth[0, 0] == pytest.approx(0.3 / math.sin(math.radians(30)), rel=1e-6)
+    # the one pixel's sample point, 30 deg down; the eye 0.3 m above the top, whose normal
+    # seen from the eye is (0, sin 60, cos 60): its 1 / t rises by sin 60 / 0.3 per tangent
+    tan5 = math.tan(math.radians(5))
+    vt = (1 - 2 * SAMPLE_Y) * tan5
+    t = 0.3 / (0.5 - math.sin(math.radians(60)) * vt)
+    slope = 8.0 / 7.8 * 0.2 * math.sin(math.radians(60)) / 0.3 * 2 * tan5
+    want = real_distance(window_depth(t) + BLOCK_OFFSET_FACTOR * slope)
+    assert v.depth[0, 0] == pytest.approx(want, rel=DEPTH_TOL)
+    assert want > t
     assert tuple(v.rgba[0, 0]) == (255, 255, 0, 255)
+
+
+@pytest.mark.parametrize('axis', ['row', 'column'])
+def test_a_pixel_is_what_its_sample_point_sees(tmp_path, axis):
+    """An edge between a pixel's sample point and its centre: the pixel takes the sample
+    point's side (the wall's top edge at row 5.3, its right end at column 20.45)."""
+    tan20, tan30 = math.tan(math.radians(20)), math.tan(math.radians(30))
+    h = 0.2 + 3.0 * (1 - 5.3 / 12) * tan20 if axis == 'row' else 1.0
+    end = -3.0 * (20.45 * 2 / 32 - 1) * tan30 if axis == 'column' else -3.0
+    text = ('resolution 0.02\nmodel( pose [ 3.1 %r 0 0 ] size [ 0.2 6 %r ] color "blue" )\n'
+            'position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] color "red"'
+            ' camera( resolution [ 32 24 ] fov [ 60 40 ] ) )\n' % (end + 3.0, h))
+    v = frame(world(tmp_path, text=text))
+    wall = np.isclose(v.depth, 3.0, rtol=DEPTH_TOL)
+    if axis == 'row':
+        assert not wall[5].any() and wall[6].all()      # the centre 5.5 lies on the wall
+    else:
+        assert wall[6:12, 20].all() and not wall[6:12, 21].any()   # the centre 20.5: beyond
+
+
+def test_an_oblique_face_reads_deeper_by_its_offset(tmp_path):
+    """A wall at 45 deg to the view: its depth pushed back by 0.5 x its slope per column."""
+    text = ('resolution 0.02\nmodel( pose [ 3 0 0 45 ] size [ 0.1 4 1.0 ] color "blue" )\n'
+            'position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ]'
+            ' camera( resolution [ 16 8 ] fov [ 40 20 ] ) )\n')
+    v = frame(world(tmp_path, text=text))
+    u, _ = pixel_tangents(v)
+    # the face toward the eye: x + y = 3 - 0.05 sqrt 2 (its normal (1, 1) / sqrt 2); along
+    # the axis (+x) with lateral tangent u (to the right: -y), x = t and y = -u t
+    c = 3 - 0.05 * math.sqrt(2)
+    t = c / (1 - u)
+    w = window_depth(t)
+    slope = np.abs(np.diff(w)).max()     # its window depth is affine in the column
+    assert np.allclose(np.diff(np.diff(1 / t)), 0, atol=1e-12)
+    want = real_distance(w + BLOCK_OFFSET_FACTOR * slope)
+    on = v.depth[4] < 8.0                 # the right-most columns pass the wall's end
+    assert on.sum() >= 12
+    assert np.allclose(v.depth[4][on], want[on], rtol=DEPTH_TOL)
+    assert (want > t).all() and not np.allclose(want, t, rtol=1e-3)
 
 
 def test_the_view_follows_the_robot(tmp_path):

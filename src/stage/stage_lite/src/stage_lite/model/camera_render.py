@@ -3,17 +3,21 @@
 What ModelCamera::GetFrame draws (model_camera.cc, canvas.cc, blockgroup.cc): the buffers
 cleared (colour (0.7, 0.7, 0.8), depth 1.0), Canvas::DrawFloor (a white quad at z = 0 over
 the world's extent: the super-regions of 1024 x 1024 cells anything was drawn into, and the
-origin), then every model's blocks, each an upright prism (its polygon from zmin to zmax),
-flat-shaded in the model's `color` (no lighting), its top a polygon drawn by even-odd over
-the contours of the model's blocks. glFrustum(±tan(hfov/2)·near, ±tan(vfov/2)·near, near,
-far); the depth read back and turned by PerspectiveCamera::realDistance into the distance
-along the view axis (planar depth, not the range along the pixel's ray): a wall square to
-the view at d reads d in every pixel; where nothing was drawn within far it reads far.
+origin) with glPolygonOffset(2, 2), then every model's blocks with glPolygonOffset(0.5, 0.5),
+each an upright prism (its polygon from zmin to zmax), flat-shaded in the model's `color` (no
+lighting), its top a polygon drawn by even-odd over the contours of the model's blocks; depth
+test GL_LESS. glFrustum(+-tan(hfov/2) near, +-tan(vfov/2) near, near, far); the depth read
+back and turned by PerspectiveCamera::realDistance into the distance along the view axis
+(planar depth, not the range along the pixel's ray): a wall square to the view at d reads d
+in every pixel; where nothing was drawn within far it reads far.
 
-Here each pixel's ray, through the pixel's centre, meets the prisms' sides and tops and the
-floor; the nearest hit at a planar depth in [near, far] gives the depth and the colour
-(glFrustum clips what is nearer than near: the ray goes on behind it). Not drawn here:
-Stage's half-colour outlines of the blocks' edges (1 px antialiased lines).
+Here each pixel's ray, through its sample point (SAMPLE_X, SAMPLE_Y: not the centre, see
+there), meets the prisms' sides and tops and the floor. Each surface hit at a planar depth in
+[near, far] (glFrustum's clipping: the ray goes on behind what is nearer) has a window depth,
+pushed back by its polygon offset (factor x its window-depth slope per pixel); the least
+wins, below the cleared 1.0, and gives the colour and the depth (realDistance of the pushed
+window depth, as Stage reads it). Stage's half-colour outlines of the blocks' edges are not
+drawn: no frame of the real Stage shows them (test/golden/camera/README.md).
 """
 import math
 
@@ -26,12 +30,20 @@ FLOOR_RGBA = (1.0, 1.0, 1.0, 1.0)     # Canvas::DrawFloor's glColor4f
 BACKGROUND = -1                       # a pixel's hit: nothing drawn
 FLOOR = -2                            # a pixel's hit: the floor
 SRBITS = 10                           # region.hh: super-regions of 2^10 cells a side
-#: Canvas::DrawFloor's glPolygonOffset(2.0, 2.0): the floor's depth is pushed back by
-#: factor x its depth slope per pixel. Measured on the real Stage under Xvfb's Mesa (golden
-#: data, test/golden/camera/): a constant 2.375 x the slope (1.1875 x the factor), the units
-#: term too small to see; so the floor reads deeper than it lies, and where the push reaches
-#: 1.0 it fails the depth test (clear colour).
-FLOOR_OFFSET_SLOPES = 2.375
+#: glPolygonOffset's factors (Canvas::DrawFloor's 2.0, BlockGroup::BuildDisplayList's 0.5):
+#: a polygon's window depth is pushed back by factor x its largest depth slope per pixel
+#: (its units term, a few 2^-24 steps of the depth buffer, is too small to see). So the floor
+#: reads deeper than it lies, and where its push reaches 1.0 it fails the depth test.
+FLOOR_OFFSET_FACTOR = 2.0
+BLOCK_OFFSET_FACTOR = 0.5
+#: Where in its pixel the real Stage samples, from the pixel's top-left corner in the image
+#: stageros publishes (x right, y down), in pixels. Canvas asks FLTK for a multisample visual
+#: (FL_MULTISAMPLE); under Xvfb, Mesa gives it 4 samples per pixel at the standard positions,
+#: and the depth and colour read back are sample 0's, at (0.375, 0.125): measured on four
+#: frames of the real Stage (test/golden/camera/), where the pixel centre (0.5, 0.5) puts a
+#: wall's edges a row off. (A visual without multisampling would sample the centre.)
+SAMPLE_X = 0.375
+SAMPLE_Y = 0.125
 _FLOAT32 = np.float32
 
 
@@ -207,34 +219,56 @@ def _box_entry(ox, oy, oz, dx, dy, dz, box, t_lo, t_hi):
     return lo
 
 
+@njit(cache=True)
+def _push(factor, rot, nx, ny, nz, h, scale_near, du, dv):
+    """The polygon offset of a plane n . (p - eye) = h (n in the world, h its signed distance
+    from the eye): factor x the larger of its window-depth slopes per column and per row.
+    Window depth is scale (1 - near / t) and 1 / t over the plane is affine in the pixel's
+    tangents u, v with slopes n_eye.x / h and n_eye.y / h (n_eye: n seen from the eye)."""
+    if h == 0.0:
+        return 0.0
+    ex = rot[0, 0] * nx + rot[1, 0] * ny + rot[2, 0] * nz
+    ey = rot[0, 1] * nx + rot[1, 1] * ny + rot[2, 1] * nz
+    return factor * scale_near * max(abs(ex / h) * du, abs(ey / h) * dv)
+
+
 @njit(cache=True, parallel=True)
 def cast_pixels(eye, rot, tan_h, tan_v, near, far, boxes, ranges, edges, owners, groups,
                 floor, depth, hits):
-    """Each pixel's nearest hit at planar depth t in [near, far] along eye + t * rot @ (u, v,
-    -1) (u, v the pixel centre's tangents; row 0 the top): depth[r, c] = t and hits[r, c] =
-    the model, FLOOR, or far and BACKGROUND."""
+    """Each pixel's nearest surface along eye + t * rot @ (u, v, -1) (u, v the tangents of
+    the pixel's sample point, row 0 the top; t the planar depth, clipped to [near, far]) by
+    window depth with its polygon offset: depth[r, c] = realDistance of that window depth and
+    hits[r, c] = the model or FLOOR; far and BACKGROUND where nothing is drawn."""
     height, width = depth.shape
     ox, oy, oz = eye[0], eye[1], eye[2]
-    # window depth d = scale (1 - near / t); over the floor plane 1 / t is affine in the
-    # pixel's tangents u, v with slopes n_eye.x / -oz, n_eye.y / -oz (n_eye: world up seen
-    # from the eye); the push is FLOOR_OFFSET_SLOPES x the larger slope per pixel
     scale = far / (far - near)
-    floor_push = 0.0
-    if oz > 0.0:
-        su = abs(rot[2, 0] / oz) * 2.0 * tan_h / width
-        sv = abs(rot[2, 1] / oz) * 2.0 * tan_v / height
-        floor_push = FLOOR_OFFSET_SLOPES * scale * near * max(su, sv)
+    scale_near = scale * near
+    du = 2.0 * tan_h / width       # tangent per column and per row
+    dv = 2.0 * tan_v / height
+    floor_push = _push(FLOOR_OFFSET_FACTOR, rot, 0.0, 0.0, 1.0, -oz, scale_near, du, dv)
     for r in prange(height):
-        v = (1.0 - (r + 0.5) * 2.0 / height) * tan_v
+        v = tan_v - (r + SAMPLE_Y) * dv
         for c in range(width):
-            u = ((c + 0.5) * 2.0 / width - 1.0) * tan_h
+            u = (c + SAMPLE_X) * du - tan_h
             dx = rot[0, 0] * u + rot[0, 1] * v - rot[0, 2]
             dy = rot[1, 0] * u + rot[1, 1] * v - rot[1, 2]
             dz = rot[2, 0] * u + rot[2, 1] * v - rot[2, 2]
-            best = far
+            best = 1.0           # the cleared window depth; GL_LESS: the first drawn wins ties
             hit = BACKGROUND
+            if oz > 0.0 and dz < 0.0:          # the floor, drawn first
+                t = -oz / dz
+                px, py = ox + t * dx, oy + t * dy
+                if near <= t <= far and floor[0] <= px <= floor[1] \
+                        and floor[2] <= py <= floor[3]:
+                    w = scale * (1.0 - near / t) + floor_push
+                    if w < best:
+                        best = w
+                        hit = FLOOR
             for b in range(boxes.shape[0]):
-                if _box_entry(ox, oy, oz, dx, dy, dz, boxes[b], near, best) < 0.0:
+                # no surface of the box can win beyond the planar depth whose window depth
+                # (unpushed) is best
+                t_lim = far if best >= scale else min(far, near / (1.0 - best / scale))
+                if _box_entry(ox, oy, oz, dx, dy, dz, boxes[b], near, t_lim) < 0.0:
                     continue
                 zmin, zmax = boxes[b, 4], boxes[b, 5]
                 for e in range(ranges[b, 0], ranges[b, 1]):
@@ -246,42 +280,35 @@ def cast_pixels(eye, rot, tan_h, tan_v, near, far, boxes, ranges, edges, owners,
                     wx = edges[e, 0] - ox
                     wy = edges[e, 1] - oy
                     t = (wx * ey - wy * ex) / den
-                    if t < near or t > best:
+                    if t < near or t > far:
                         continue
                     s = (wx * dy - wy * dx) / den
                     if s < 0.0 or s > 1.0:
                         continue
                     z = oz + t * dz
-                    if zmin <= z <= zmax and (t < best or hit == BACKGROUND):
-                        best = t
-                        hit = owners[b]
+                    if zmin <= z <= zmax:
+                        # the side's plane: normal (ey, -ex, 0), through the edge's start
+                        w = scale * (1.0 - near / t) + _push(
+                            BLOCK_OFFSET_FACTOR, rot, ey, -ex, 0.0, ey * wx - ex * wy,
+                            scale_near, du, dv)
+                        if w < best:
+                            best = w
+                            hit = owners[b]
             for g in range(groups.shape[0]):
                 b0, b1 = groups[g, 0], groups[g, 1]
-                zmin, zmax = boxes[b0, 4], boxes[b0, 5]
-                if oz > zmax and dz < 0.0:
-                    plane = zmax
-                elif oz < zmin and dz > 0.0:
-                    plane = zmin
-                else:
+                plane = boxes[b0, 5]     # Stage draws a top, no bottom, seen from either side
+                if dz == 0.0:
                     continue
                 t = (plane - oz) / dz
-                if t < near or t >= best:
+                if t < near or t > far:
+                    continue
+                w = scale * (1.0 - near / t) + _push(BLOCK_OFFSET_FACTOR, rot, 0.0, 0.0, 1.0,
+                                                     plane - oz, scale_near, du, dv)
+                if w >= best:
                     continue
                 px, py = ox + t * dx, oy + t * dy
                 if _inside(px, py, edges, ranges[b0, 0], ranges[b1 - 1, 1]):
-                    best = t
+                    best = w
                     hit = groups[g, 2]
-            if oz > 0.0 and dz < 0.0:
-                t = -oz / dz
-                px, py = ox + t * dx, oy + t * dy
-                if near <= t <= far and floor[0] <= px <= floor[1] \
-                        and floor[2] <= py <= floor[3]:
-                    # the floor's window depth pushed back by its polygon offset, against
-                    # the nearest block's (or the cleared 1.0)
-                    dwin = scale * (1.0 - near / t) + floor_push
-                    dbest = scale * (1.0 - near / best) if hit != BACKGROUND else 1.0
-                    if dwin < dbest:
-                        best = near * far / (far - dwin * (far - near))
-                        hit = FLOOR
-            depth[r, c] = best
+            depth[r, c] = near * far / (far - best * (far - near))
             hits[r, c] = hit

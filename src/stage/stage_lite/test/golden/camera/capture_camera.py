@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Capture one frame of a camera from a running stageros (real or ours) into an npz.
 
-Usage: capture_camera.py PREFIX OUT.npz  (PREFIX: the camera topics' prefix, '/robot_0/').
+Usage: capture_camera.py PREFIX OUT.npz [SUFFIX]  (PREFIX: the camera topics' prefix,
+'/robot_0/'; SUFFIX: a robot's k-th of several cameras, '_k': image_k, depth_k, ...).
 Waits (named deadline) for image, depth and camera_info of one step (equal stamps) and
 saves rgba (h, w, 4) uint8, depth (h, w) float32, the messages' fields and the stamp.
 """
@@ -17,6 +18,7 @@ DEADLINE_S = 60.0
 
 def main():
     prefix, out = sys.argv[1], sys.argv[2]
+    suffix = sys.argv[3] if len(sys.argv) > 3 else ''
     rospy.init_node('capture_camera', anonymous=True)
     got = {}
 
@@ -24,9 +26,9 @@ def main():
         def cb(msg):
             got.setdefault(name, {})[msg.header.stamp.to_nsec()] = msg
         return cb
-    subs = [rospy.Subscriber(prefix + 'image', Image, keep('image')),
-            rospy.Subscriber(prefix + 'depth', Image, keep('depth')),
-            rospy.Subscriber(prefix + 'camera_info', CameraInfo, keep('info'))]
+    subs = [rospy.Subscriber(prefix + 'image' + suffix, Image, keep('image')),
+            rospy.Subscriber(prefix + 'depth' + suffix, Image, keep('depth')),
+            rospy.Subscriber(prefix + 'camera_info' + suffix, CameraInfo, keep('info'))]
     deadline = time.monotonic() + DEADLINE_S
     while time.monotonic() < deadline:
         if len(got) == 3:
