@@ -1,6 +1,7 @@
 """Stage's controllers: found and started as Stage does, driving as their C++ rules say, and
 every way a controller can be wrong reported on the world file's line."""
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -286,3 +287,36 @@ def test_pioneer_flocking_turns_toward_the_heading_of_the_robot_its_finder_sees(
     assert goal[0] == 0.4
     assert goal[3] == pytest.approx(0.3 * resultant + 0.3 * heading_error, abs=0.01)
     assert abs(0.3 * heading_error) > 0.1
+
+
+ORDER_CONTROLLER = '''
+started = []
+
+
+def init(model, args):
+    started.append(model.token)
+'''
+
+
+def test_stages_model_order_sets_the_controllers_start_and_the_moves(tmp_path, monkeypatch):
+    (tmp_path / 'note_start.py').write_text(ORDER_CONTROLLER)
+    monkeypatch.setenv('STAGEPATH', str(tmp_path))
+    # two robots driving head on into the same gap: the one Stage moves first takes it
+    path = world_file(tmp_path, 'position( name "p" pose [ -0.24 0 0 0 ] size [ 0.2 0.2 0.3 ]'
+                      ' ctrl "note_start" )\n'
+                      'position( name "q" pose [ 0.24 0 0 180 ] size [ 0.2 0.2 0.3 ]'
+                      ' ctrl "note_start" )\n')
+
+    def run(order):
+        w = load_world(path, model_order=order)
+        noted = sys.modules['stage_ctrl_note_start'].started   # one module, as Stage's .so
+        started = noted[-2:]
+        for i in range(2):
+            w.set_command(i, 0.5, 0.0, 0.0)
+        stalls = [False, False]
+        while not any(stalls):             # the first step one of them hits the other
+            w.step()
+            stalls = [r.stalled for r in w.robots]
+        return started, stalls
+    assert run(None) == (['p', 'q'], [False, True])         # file order
+    assert run(['q', 'p']) == (['q', 'p'], [True, False])     # Stage's, as given

@@ -8,7 +8,8 @@ then in its own plugin folder; here:
 1. `name.py` in a folder of STAGEPATH (colon-separated): your own controller, in Python;
 2. Stage's own controllers, ported: the module `stage_lite.controllers.name`.
 Its `init(model, args)` is called with the model (stage_api) and a CtrlArgs, every model in
-file order, each model's controllers in the order named: it subscribes what it reads and
+Stage's order (World.stage_order: file order unless a real run's order is given), each
+model's controllers in the order named: it subscribes what it reads and
 adds the callbacks that drive it. What Stage does with a plugin it cannot use (it exits) is
 one WorldError naming the world file's line: a controller not found, one that does not
 import, has no init, or raises in it. A callback that raises later is reported once, with
@@ -38,12 +39,19 @@ def find(name, environ=None):
     for folder in search_path(environ):
         path = os.path.join(folder, name + '.py')
         if os.path.isfile(path):
-            spec = importlib.util.spec_from_file_location('stage_ctrl_' + name, path)
+            # loaded once per process, as Stage opens a plugin once: its globals are shared
+            # by every model (and world) that names it
+            key = 'stage_ctrl_' + name
+            module = sys.modules.get(key)
+            if module is not None and getattr(module, '__file__', None) == path:
+                return path, module
+            spec = importlib.util.spec_from_file_location(key, path)
             module = importlib.util.module_from_spec(spec)
             try:
                 spec.loader.exec_module(module)
             except Exception as err:
                 raise ImportError('%s: %s' % (path, describe(err))) from None
+            sys.modules[key] = module
             return path, module
     if name.isidentifier():
         try:
@@ -68,7 +76,7 @@ def start(world, environ=None):
     first that cannot be used."""
     pending = []
     stagepath = (os.environ if environ is None else environ).get('STAGEPATH', 'unset')
-    for model in world.models:
+    for model in world.stage_order:      # Stage's InitControllers: World::models' order
         for text, path, line in model.ctrl:
             words = text.split()
             if not words:

@@ -53,12 +53,16 @@ __all__ = ['World', 'WorldError', 'load_world']
 class World:
     """A loaded world. Use load_world()."""
 
-    def __init__(self, path, seed=None, stageros=True, ctrlargs=''):
+    def __init__(self, path, seed=None, stageros=True, ctrlargs='', model_order=None):
         """seed: random()'s srandom and drand48's srand48 (default: an unseeded process's,
         srandom(1) and glibc's zero drand48 state), and the load-time draws' generator;
         stageros: subscribe every robot and its rangers as stageros does (else only what
         the controllers subscribe, as Stage's `stage`); ctrlargs: `stage -a`'s argument
-        string, World::ctrlargs, given to every controller."""
+        string, World::ctrlargs, given to every controller; model_order: the models'
+        tokens in the order of Stage's World::models, a set of pointers ordered by the
+        models' addresses in memory (STAGE_MODEL_POINTER_ORDER): the order Stage starts the
+        controllers, moves the robots and lists a finder's readings in. It follows nothing
+        in the world (the same at every run of one program); without it, file order."""
         self.path = path
         # one generator for what loading draws (random colours, odometry errors)
         self._rng = np.random.default_rng(seed)
@@ -93,9 +97,12 @@ class World:
         self.ctrlargs = ctrlargs
         self.log = controllers.default_log     # run-time errors of controllers; a node's own
         self._robot_of = {r.model: r for r in self.robots}
+        self._rank = _ranks(self.models, model_order)
+        self.stage_order = sorted(self.models, key=self._rank.__getitem__)
+        self._movers = sorted(self.robots, key=lambda r: self._rank[r.model])
         self._prepare_rays()
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
-        self.fiducial_index = FiducialIndex(self.models)
+        self.fiducial_index = FiducialIndex(self.models, rank=self._rank.__getitem__)
         self.sight = Sight(self.models, self.robots, self.space)
         # the cameras stageros publishes (camera.py); they draw before the step's moves
         self.cameras = CameraRig(self.models, self.robots, self._statics, self.ppm,
@@ -173,9 +180,9 @@ class World:
                 m.update(self.sight, (self.updates + 1) % 2)
         self.cameras.update(now)
         layer = self.updates % 2
-        for r in self.robots:
+        for r in self._movers:                    # Stage's active_velocity, in its order
             old = r.pose
-            if scheduler.subscribed(r.model):     # Stage's active_velocity
+            if scheduler.subscribed(r.model):
                 self._move(r, dt, layer)
             new = r.pose
             r.truth_twist = ((new[0] - old[0]) / dt, (new[1] - old[1]) / dt,
@@ -434,9 +441,18 @@ def finite_float(name, value):
     return float(value)
 
 
-def load_world(path, seed=None, stageros=True, ctrlargs=''):
+def load_world(path, seed=None, stageros=True, ctrlargs='', model_order=None):
     """Parses the world file (includes, bitmaps) into a World and starts its controllers
     (see World); raises WorldError."""
     if not os.path.isfile(path):
         raise WorldError(path, None, 'the world file does not exist')
-    return World(path, seed, stageros, ctrlargs)
+    return World(path, seed, stageros, ctrlargs, model_order)
+
+
+def _ranks(models, model_order):
+    """Each model's place in Stage's World::models: by model_order's tokens where it names
+    them, the others after, in file order."""
+    if not model_order:
+        return {m: m.index for m in models}
+    named = {token: k for k, token in enumerate(model_order)}
+    return {m: (named.get(m.token, len(named) + m.index)) for m in models}
