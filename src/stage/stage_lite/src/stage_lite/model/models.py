@@ -136,6 +136,7 @@ class Model:
         self.bitmap = None
         self.flags = []          # the flags it carries (Stage's flag_list), oldest first
         self.used = False        # taken by GetUnusedModelOfType
+        self.alwayson = False    # Stage subscribes it as it loads (`alwayson 1`)
         scope = parent.child_counts if parent else counts
         n = scope.get(kind, 0)
         scope[kind] = n + 1
@@ -204,10 +205,11 @@ class Model:
         for name in ('event_queue', 'watts', 'give_watts', 'take_watts', 'debug', 'mass',
                      'gripper_return',
                      'gui_nose', 'gui_grid', 'gui_outline', 'gui_move', 'map_resolution',
-                     'say', 'trail_length', 'trail_interval', 'alwayson', 'joules',
+                     'say', 'trail_length', 'trail_interval', 'joules',
                      'joules_capacity', 'kjoules', 'kjoules_capacity', 'friction'):
             if wf.exists(e, name):
                 wf.read_string(e, name, '')
+        self.alwayson = bool(wf.read_int(e, 'alwayson', 0))   # subscribed at load (World)
         self.name = wf.read_string(e, 'name', '')
         if self.name:
             self.token = self.name    # Stage's token: its children's names start with it

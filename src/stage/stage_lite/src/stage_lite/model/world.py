@@ -107,6 +107,9 @@ class World:
         # the cameras stageros publishes (camera.py); they draw before the step's moves
         self.cameras = CameraRig(self.models, self.robots, self._statics, self.ppm,
                                  self.window, self.warnings)
+        for m in self.models:           # Model::Load's Subscribe of an `alwayson` model
+            if m.alwayson:
+                self.subscribe(m)
         controllers.start(self)
         if stageros:
             self.subscribe_stageros()
