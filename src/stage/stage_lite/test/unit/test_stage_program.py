@@ -85,3 +85,13 @@ def test_ctrl_c_ends_it_at_once_without_a_traceback(tmp_path):
     finally:
         proc.stop()
     assert '[Stage: interrupted]' in proc.output() and 'Traceback' not in proc.output()
+
+
+def test_with_its_window_it_runs_at_the_worlds_speedup_and_ends_at_quit_time(tmp_path):
+    from course_common.xvfb import Xvfb
+    with Xvfb() as xvfb:
+        code, out = stage(world(tmp_path, 'quit_time 2\nspeedup 4'), env={'DISPLAY': xvfb.display})
+    assert code == 0, out
+    assert out.startswith('Stage 4.3.0 (stage_lite) \n') and 'GUI disabled' not in out
+    assert 'running without' not in out, out      # the window opened on the display
+    assert out.rstrip().endswith('[Stage: done]') and 'Traceback' not in out
