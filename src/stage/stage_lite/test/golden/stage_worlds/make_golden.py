@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""Keep what tests need of stage_capture's runs of Stage's own worlds, one .npz per world.
+
+usage: make_golden.py CAPTURES OUT [--prefix-steps N] [--world NAME..]
+
+CAPTURES holds one folder per world (capture_worlds.sh's OUT), each with run<k>.stgcap.
+For each world it writes OUT/<world>.npz and prints a JSON line of its summary:
+
+- meta: a JSON string: the capture header (models, interval_sim, threads, seeds), the
+  runs, the parting steps (first state where two runs put a robot more than 1 cm, and more
+  than 1e-9 m, apart), the sources and sinks found by name;
+- prefix_pose: float64 (runs, N + 1, robots, 3), the first N steps' world poses, bit for bit;
+- pose: float32 (runs, states, robots, 3) at every `pose_every`-th state (meta says which);
+- stall: the stall flags of every state, np.packbits of (runs, states, robots) along robots;
+- flags: uint16 (runs, states, F) flag counts of the flag models that ever held a flag;
+- stat_<name>: float32 (runs, times) swarm statistics every second (stat_t_s the times).
+
+Run it under /usr/bin/python3 with the workspace sourced (it imports stage_lite.testing).
+"""
+import argparse
+import glob
+import json
+import os
+import sys
+
+import numpy as np
+from stage_lite.testing import stage_capture_file, swarm_stats
+
+FLOCKING = {'pioneer_flocking', 'SFU'}
+FORAGING = {'fasr', 'fasr2'}
+#: Worlds so large that only a short float64 prefix is kept (hospital: 1000 robots).
+SHORT_PREFIX = {'benchmark_hospital': 10}
+#: Robots above which the float32 poses are kept once a second, not every step.
+DENSE_ROBOTS = 10
+STAT_EVERY_S = 1.0
+
+
+def load_runs(folder):
+    paths = sorted(glob.glob(os.path.join(folder, 'run*.stgcap')),
+                   key=lambda p: int(os.path.basename(p)[3:-7]))
+    runs = [stage_capture_file.load(p) for p in paths]
+    if not runs:
+        raise SystemExit('no runs in %s' % folder)
+    n = min(len(a['t_s']) for _, a in runs)
+    return paths, runs, n
+
+
+def places(header):
+    """Sources and sinks of a foraging world: its top-level models named *source, *sink."""
+    out = {}
+    for name, pose in zip(header['flag_models'], header['flag_model_poses'], strict=True):
+        for kind in ('source', 'sink'):
+            if name.endswith(kind):
+                out.setdefault(kind, []).append(pose[:2])
+    return {k: np.array(v) for k, v in out.items()}
+
+
+def make(world, folder, out_dir, prefix_steps):
+    paths, runs, n = load_runs(folder)
+    header = runs[0][0]
+    t_s = runs[0][1]['t_s'][:n]
+    poses = [a['pose'][:n] for _, a in runs]
+    n_robots = poses[0].shape[1]
+    dt = float(np.diff(t_s).min())
+    prefix = min(SHORT_PREFIX.get(world, prefix_steps), n - 1)
+    pose_every = 1 if n_robots <= DENSE_ROBOTS else int(round(1.0 / dt))
+    kinds = places(header) if world in FORAGING else {}
+    times = np.arange(0.0, t_s[-1] + dt / 4, STAT_EVERY_S)
+    stats = [swarm_stats.swarm_stats(t_s, p, times, flocking=world in FLOCKING,
+                                     places=kinds) for p in poses]
+    flags = np.stack([a['flags'][:n] for _, a in runs])
+    held = np.nonzero(flags.max(axis=(0, 1)) > 0)[0]
+    flag_names = [header['flag_models'][i] for i in held]
+    stat = {'stat_' + k: np.stack([s[k] for s in stats]).astype(np.float32)
+            for k in stats[0] if k != 't_s'}
+    # Flags delivered: what each sink holds beyond what it held at the start.
+    sinks = [i for i, name in enumerate(header['flag_models']) if name.endswith('sink')]
+    if world in FORAGING and sinks:
+        idx = swarm_stats.state_index(t_s, times)
+        got = flags[:, idx][:, :, sinks].astype(np.int64) - flags[:, :1, sinks]
+        stat['stat_delivered_per_sink'] = got.mean(axis=2).astype(np.float32)
+    parting = {}
+    if len(poses) > 1:
+        for label, tol in (('1cm', 0.01), ('1e-9', 1e-9)):
+            parting[label] = swarm_stats.parting_step(poses, tol_m=tol)
+    meta = dict(header, world_name=world, runs=[os.path.basename(p) for p in paths],
+                seeds=[h['drand48_seed_time'] for h, _ in runs], states=n,
+                prefix_steps=prefix, pose_every=pose_every, parting_state=parting,
+                kept_flag_models=flag_names,
+                places={k: v.tolist() for k, v in kinds.items()})
+    arrays = dict(
+        meta=np.array(json.dumps(meta)),
+        prefix_pose=np.stack([p[:prefix + 1] for p in poses]),
+        pose=np.stack([p[::pose_every] for p in poses]).astype(np.float32),
+        stall=np.packbits(np.stack([a['stall'][:n] for _, a in runs]), axis=2),
+        flags=flags[:, :, held].astype(np.uint16),
+        stat_t_s=times.astype(np.float32),
+        **stat)
+    path = os.path.join(out_dir, world + '.npz')
+    np.savez_compressed(path, **arrays)
+    summary = dict(world=world, robots=n_robots, runs=len(runs), states=n, dt=dt,
+                   parting=parting, bytes=os.path.getsize(path),
+                   stats={k[5:]: [[float(np.min(v[:, i])), float(np.max(v[:, i]))]
+                                  for i in range(0, len(times), 5)]
+                          for k, v in stat.items()},
+                   stat_times=times[::5].tolist())
+    return summary
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    parser.add_argument('captures')
+    parser.add_argument('out')
+    parser.add_argument('--prefix-steps', type=int, default=100)
+    parser.add_argument('--world', nargs='*')
+    args = parser.parse_args(argv)
+    worlds = args.world or sorted(os.listdir(args.captures))
+    for folder in worlds:
+        # capture_worlds.sh names a folder for the world file it ran: NAME_run is NAME with
+        # `paused 0`, benchmark_NAME is benchmark/NAME.
+        world = folder[:-len('_run')] if folder.endswith('_run') else folder
+        summary = make(world, os.path.join(args.captures, folder), args.out, args.prefix_steps)
+        print(json.dumps(summary))
+        sys.stdout.flush()
+
+
+if __name__ == '__main__':
+    main()
