@@ -105,7 +105,7 @@ def _load_models(wf, path, rng):
     window = None
     models = []
     by_entity = {}
-    counts = {}
+    counts = {'model': 1}   # Stage's own ground model is model:0: a world's first is model:1
     for ent in wf.entities[1:]:
         parent = by_entity.get(ent.parent)
         if ent.kind == 'window':

@@ -1,0 +1,120 @@
+"""stage_lite on Stage 4.3.0's own worlds, held to the real Stage's runs of them, no ROS.
+
+Run: `./ws bench stage_worlds_fidelity --worlds STAGE/worlds [--seconds S] [WORLD ...]` with
+STAGE/worlds a copy of Stage v4.3.0's worlds/ folder (GPL-2, not in this repository: see
+src/stage/stage_lite/test/golden/stage_worlds/README.md); without it the bench says so and
+does nothing. For each world with golden data (stage_worlds/<world>.npz, the real Stage's own
+runs), stage_lite runs it as `stage -g` does, in Stage's model order (model_order.json, read
+from a real run), for S simulated seconds (default: as long as the real runs, at most 60 s),
+and prints per world:
+- where the real runs part from each other (first step two runs differ by more than 1e-9 m),
+  and the first step at which stage_lite differs from each real run (its poses are compared
+  bit for bit over the first 100 steps the golden data keeps at float64);
+- per swarm statistic (path length, moving share, speed; alignment and spacing when
+  flocking), at how many of the one-second times stage_lite lies within the real runs'
+  min..max, and the figures at the last time;
+- load and run times (on a machine shared with nothing else, this is also a speed figure).
+"""
+import argparse
+import json
+import os
+import sys
+import time
+
+GOLDEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'src', 'stage',
+                      'stage_lite', 'test', 'golden', 'stage_worlds')
+#: the world file for each golden world, in Stage's worlds/ (the paused ones run all the same:
+#: Stage's headless World reads no `paused`)
+FILES = {'benchmark_cave': 'benchmark/cave.world', 'benchmark_hospital': 'benchmark/hospital.world'}
+FLOCKING = ('pioneer_flocking', 'SFU')
+PREFIX_TOL_M = 1e-9
+MAX_SECONDS = 60.0
+
+
+def first_difference(ours, real):
+    """The first state at which two (T, N, 3) pose arrays differ by more than the tolerance
+    (headings compared on the circle); None if never."""
+    import numpy as np
+    e = np.abs(ours - real)
+    e[..., 2] = np.abs((ours[..., 2] - real[..., 2] + np.pi) % (2 * np.pi) - np.pi)
+    apart = e.max(axis=(1, 2)) > PREFIX_TOL_M
+    return int(np.argmax(apart)) if apart.any() else None
+
+
+def check(world, folder, seconds):
+    """One world's line of figures (a dict)."""
+    import numpy as np
+    from stage_lite.model.world import load_world
+    from stage_lite.testing import swarm_stats
+    data = np.load(os.path.join(GOLDEN, world + '.npz'))
+    meta = json.loads(str(data['meta']))
+    with open(os.path.join(GOLDEN, 'model_order.json')) as f:
+        order = json.load(f)[world]
+    path = os.path.join(folder, FILES.get(world, world + '.world'))
+    dt = meta['interval_sim_us'] / 1e6
+    steps = int(round(min(seconds, (meta['states'] - 1) * dt) / dt))
+    here = os.getcwd()
+    os.chdir(os.path.dirname(path))      # worlds name their .inc and bitmaps from there
+    try:
+        t0 = time.perf_counter()
+        w = load_world(os.path.basename(path), stageros=False, model_order=order)
+        load_s = time.perf_counter() - t0
+        poses = [[r.pose for r in w.robots]]
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            w.step()
+            poses.append([r.pose for r in w.robots])
+        run_s = time.perf_counter() - t0
+    finally:
+        os.chdir(here)
+    poses = np.array(poses)
+    prefix = data['prefix_pose']
+    n = min(prefix.shape[1], poses.shape[0])
+    t_s = np.arange(poses.shape[0]) * dt
+    times = np.array([t for t in data['stat_t_s'].astype(float) if t <= t_s[-1] + 1e-9])
+    ours = swarm_stats.swarm_stats(t_s, poses, times, flocking=world in FLOCKING)
+    stats = {}
+    for name, values in ours.items():
+        key = 'stat_' + name
+        if name == 't_s' or key not in data.files:
+            continue
+        real = data[key][:, :len(times)].astype(float)
+        lo, hi = real.min(axis=0), real.max(axis=0)
+        inside = (values >= lo - 1e-6) & (values <= hi + 1e-6)
+        stats[name] = (int(inside.sum()), len(inside), float(values[-1]), float(lo[-1]),
+                       float(hi[-1]))
+    return dict(world=world, robots=len(w.robots), runs=int(prefix.shape[0]),
+                real_parting=meta['parting_state']['1e-9'],
+                ours=[first_difference(poses[:n], prefix[r, :n]) for r in range(prefix.shape[0])],
+                prefix=n - 1, seconds=steps * dt, load_s=load_s, run_s=run_s, stats=stats)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--worlds', help="a copy of Stage v4.3.0's worlds/ folder")
+    parser.add_argument('--seconds', type=float, default=MAX_SECONDS)
+    parser.add_argument('names', nargs='*', help='worlds (default: every golden one)')
+    args, _ = parser.parse_known_args(argv)   # ./ws bench passes other benches' options too
+    if not args.worlds or not os.path.isdir(args.worlds):
+        print("stage_worlds_fidelity: no --worlds folder (Stage v4.3.0's worlds/, not in this "
+              'repository): nothing to compare')
+        return
+    with open(os.path.join(GOLDEN, 'model_order.json')) as f:
+        known = sorted(json.load(f))
+    names = args.names or known
+    print('| world | robots | real runs part at step | stage_lite first differs at step (per'
+          ' run) | statistics within the real runs\' range (times) | run: sim s, wall s |')
+    print('|---|---|---|---|---|---|')
+    for world in names:
+        if world not in known:
+            sys.exit('unknown world %s (golden ones: %s)' % (world, ', '.join(known)))
+        r = check(world, args.worlds, args.seconds)
+        ours = ', '.join('never (of %d)' % r['prefix'] if s is None else str(s) for s in r['ours'])
+        stats = '; '.join('%s %d/%d (%.3g in %.3g..%.3g)' % (k, *v) for k, v in r['stats'].items())
+        print('| %s | %d | %s | %s | %s | %.0f s in %.1f s (load %.1f s) |'
+              % (r['world'], r['robots'], r['real_parting'], ours, stats, r['seconds'],
+                 r['run_s'], r['load_s']), flush=True)
+
+
+if __name__ == '__main__':
+    main()
