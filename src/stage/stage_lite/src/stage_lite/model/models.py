@@ -22,6 +22,7 @@ import numpy as np
 
 from . import image
 from .bodies import Block, bounding_box, calc_size, canonical_winding, rect_block
+from .energy import load_energy
 from .pose import pose_add, stage_normalize
 from .worldfile import WorldError
 
@@ -137,6 +138,12 @@ class Model:
         self.flags = []          # the flags it carries (Stage's flag_list), oldest first
         self.used = False        # taken by GetUnusedModelOfType
         self.alwayson = False    # Stage subscribes it as it loads (`alwayson 1`)
+        # the energy model's (energy.py): its own pack, what it draws, gives and takes, kg
+        self.power_pack = None
+        self.watts = 0.0
+        self.watts_give = 0.0
+        self.watts_take = 0.0
+        self.mass = 0.0
         scope = parent.child_counts if parent else counts
         n = scope.get(kind, 0)
         scope[kind] = n + 1
@@ -202,13 +209,12 @@ class Model:
     # ---- Model::Load -------------------------------------------------------------------
     def load(self, wf, rng):
         e = self.entity
-        for name in ('event_queue', 'watts', 'give_watts', 'take_watts', 'debug', 'mass',
-                     'gripper_return',
+        for name in ('event_queue', 'debug', 'gripper_return',
                      'gui_nose', 'gui_grid', 'gui_outline', 'gui_move', 'map_resolution',
-                     'say', 'trail_length', 'trail_interval', 'joules',
-                     'joules_capacity', 'kjoules', 'kjoules_capacity', 'friction'):
+                     'say', 'trail_length', 'trail_interval', 'friction'):
             if wf.exists(e, name):
                 wf.read_string(e, name, '')
+        load_energy(self, wf, e)
         self.alwayson = bool(wf.read_int(e, 'alwayson', 0))   # subscribed at load (World)
         self.name = wf.read_string(e, 'name', '')
         if self.name:

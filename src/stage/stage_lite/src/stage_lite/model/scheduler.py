@@ -33,6 +33,8 @@ class Scheduler:
         # what to do when an owned callback raises (it is then removed)
         self.owner = None
         self.on_error = None
+        # told of each model's Startup and Shutdown (the energy model: energy.Energy)
+        self.lifecycle = None
 
     # ---- subscriptions -------------------------------------------------------------------
     def subscribed(self, model):
@@ -46,6 +48,8 @@ class Scheduler:
             queue = (self.random.random() % self.threads) + 1 if model.thread_safe else 0
             self.queue_of[model] = queue
             self.queues[queue].push(now_us + model.interval_us, model)
+            if self.lifecycle is not None:
+                self.lifecycle.started(model)
             self.call(model, CB_STARTUP)
 
     def unsubscribe(self, model):
@@ -57,6 +61,8 @@ class Scheduler:
         self.subs[model] = count - 1
         if count == 1:
             self.call(model, CB_SHUTDOWN)
+            if self.lifecycle is not None:
+                self.lifecycle.stopped(model)
             return True
         return False
 

@@ -11,6 +11,7 @@ Stage. No rospy.
 import math
 from dataclasses import dataclass, replace
 
+from .energy import find_power_pack
 from .pose import pose_add, stage_normalize
 from .scheduler import CB_FLAGDECR, CB_FLAGINCR
 
@@ -119,6 +120,9 @@ class ModelApi:
     def world(self):
         return world_api(self._world)
 
+    def get_world(self):
+        return self.world
+
     @property
     def parent(self):
         p = self._model.parent
@@ -172,6 +176,19 @@ class ModelApi:
         self._world.scheduler.add_callback(self._model, kind,
                                            lambda _, a: function(self, a), argument)
 
+    # ---- energy (energy.py) --------------------------------------------------------------
+    def find_power_pack(self):
+        """Model::FindPowerPack: its own power pack or its nearest ancestor's (stored,
+        capacity, charging, dissipated, proportion_remaining()), or None."""
+        return find_power_pack(self._model)
+
+    def get_watts(self):
+        return self._model.watts
+
+    def set_watts(self, watts):
+        """Model::SetWatts: what it draws from its pack while started."""
+        self._model.watts = float(watts)
+
     # ---- flags ---------------------------------------------------------------------------
     def get_flag_count(self):
         return len(self._model.flags)
@@ -201,6 +218,10 @@ class PositionApi(ModelApi):
 
     def set_speed(self, x, y, a):
         self._command('velocity', x=x, y=y, z=0.0, a=a)
+
+    def stop(self):
+        """ModelPosition::Stop: set_speed(0, 0, 0)."""
+        self.set_speed(0.0, 0.0, 0.0)
 
     def set_x_speed(self, x):
         self._command('velocity', x=x)

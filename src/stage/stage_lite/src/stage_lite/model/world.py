@@ -25,7 +25,7 @@ interval_sim:
    beside the moves), then draws its noise from random() beam by beam (noise.py); each
    fiducial finder looks for the fiducial-bearing models around it;
 4. the update callbacks of every model that updated (the controllers), queue by queue, then
-   the world's callbacks;
+   the world's callbacks, then the energy model's charge update (energy.py);
 5. stageros publishes: odom = the estimate and the velocity, ground truth = the world pose.
 """
 import math
@@ -36,6 +36,7 @@ import numpy as np
 from . import controllers, floor, grid, world_load
 from .blobfinder import Blobfinder
 from .camera import CameraRig
+from .energy import Energy
 from .fiducial import Fiducial, FiducialIndex
 from .glibc_random import Rand48, Random
 from .noise import RangerNoise
@@ -100,6 +101,8 @@ class World:
         self._rank = _ranks(self.models, model_order)
         self.stage_order = sorted(self.models, key=self._rank.__getitem__)
         self._movers = sorted(self.robots, key=lambda r: self._rank[r.model])
+        self.energy = Energy(self, self._rank.__getitem__)   # energy.py: packs, charging
+        self.scheduler.lifecycle = self.energy
         self._prepare_rays()
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models, rank=self._rank.__getitem__)
@@ -205,6 +208,7 @@ class World:
                 if scheduler.has_callbacks(m, CB_UPDATE):
                     scheduler.call(m, CB_UPDATE)
         scheduler.call_world(self)
+        self.energy.update()                # Stage's UpdateCharge of active_energy
         if rangers:
             self._refresh_views(rangers)    # what stageros then reads, callbacks' changes in
         self.updates += 1
@@ -216,6 +220,7 @@ class World:
         m = r.model
         if subscribed:
             vel = r.commanded_velocity(dt)
+            self.energy.position_updated(m, vel)
             for k, (lo, hi) in enumerate(m.velocity_bounds):
                 vel[k] = lo if vel[k] < lo else (hi if vel[k] > hi else vel[k])
             r.velocity = tuple(vel)

@@ -1,0 +1,297 @@
+"""Stage 4.3's energy model (libstage/powerpack.cc, model.cc): power packs, what models
+draw from them, and chargers that fill the packs of the models touching them (no rospy).
+
+A model gets a power pack from its world-file properties, read in Stage's order:
+`joules J` (stored = capacity = J; a negative J is an infinite supply), `joules_capacity`,
+`kjoules K` (stored = capacity = 1000 K), `kjoules_capacity` (1000 K); a later one overrides
+an earlier one, and a capacity below the store cuts the store. Every model also reads
+`watts` (what it dissipates), `give_watts` (a charger's rate), `take_watts` (the most a
+model takes from a charger) and `mass` (kg). A model without a pack draws from its
+nearest ancestor's (FindPowerPack).
+
+A model joins the world's energy set when it starts (its first subscription, or `alwayson`)
+and has a pack somewhere up its tree, and leaves it at its shutdown. Its watts change as
+Stage's types set them: a ranger draws 0.2 W per sensor while started, a blobfinder 2 W, a
+bumper 0.1 W (the world file's `watts` is then overwritten); a position model, at each of
+its updates while subscribed, 1 W + 10 W per kg per unit of speed, times (|vx| + |vy| + |va|)
+of the velocity it was commanded, before velocity_bounds clip it.
+
+At the end of each step (after the world's callbacks) each model of the set, in Stage's model
+order, dissipates watts x interval_energy (0.1 s, whatever interval_sim is: with a 20 ms step
+a pack runs down five times faster than its watts say) from its pack, and a model with
+give_watts hands min(give_watts, his take_watts) x interval_energy to each model that touches
+it and has take_watts and a pack: touching as Stage's AppendTouchingModels finds it, a model
+with a block in a cell the charger's own blocks are drawn into, in the layer this step's moves
+drew (no height test; models of the charger's own tree are not counted). An empty pack stays
+at 0 and nothing else happens: Stage 4.3 stops no model for lack of energy.
+"""
+import numpy as np
+
+from . import grid
+
+ENERGY_INTERVAL_US = 100000          # Model::interval_energy, fixed in Stage 4.3
+POSITION_WATTS = 1.0                 # ModelPosition's base draw
+POSITION_WATTS_KGMS = 10.0           # per kg per m/s (and per rad/s)
+RANGER_WATTS_PER_SENSOR = 0.2
+BLOBFINDER_WATTS = 2.0
+BUMPER_WATTS = 0.1
+#: what each kind draws while started (Startup's SetWatts; Shutdown sets 0)
+STARTED_WATTS = {'blobfinder': BLOBFINDER_WATTS, 'bumper': BUMPER_WATTS}
+
+
+class PowerPack:
+    """Stage's PowerPack: joules stored (negative: an infinite supply), capacity, whether it
+    is being charged, and what it has dissipated; `supplied`, what an infinite supply gave."""
+
+    def __init__(self, stored=0.0, capacity=0.0):
+        self.stored = float(stored)
+        self.capacity = float(capacity)
+        self.charging = False
+        self.dissipated = 0.0
+        self.supplied = 0.0
+
+    def __repr__(self):
+        return 'PowerPack(%.2f / %.2f J)' % (self.stored, self.capacity)
+
+    def remaining_capacity(self):
+        return self.capacity - self.stored
+
+    def proportion_remaining(self):
+        """stored / capacity (Stage divides as it is: a pack of capacity 0 gives inf or nan)."""
+        if self.capacity == 0.0:
+            return float('nan') if self.stored == 0.0 else float('inf') * np.sign(self.stored)
+        return self.stored / self.capacity
+
+    def set_capacity(self, joules):
+        self.capacity = float(joules)
+        if self.stored > self.capacity:
+            self.stored = self.capacity
+
+    def set_stored(self, joules):
+        self.stored = float(joules)
+
+    def add(self, joules):
+        """Adds up to the remaining capacity; any gain marks it charging."""
+        amount = min(self.remaining_capacity(), joules)
+        self.stored += amount
+        if amount > 0:
+            self.charging = True
+
+    def subtract(self, joules):
+        """Takes up to what is stored; an infinite supply gives it all and keeps its store."""
+        if self.stored < 0:
+            self.supplied += joules
+            return
+        self.stored -= min(self.stored, joules)
+
+    def transfer_to(self, dest, joules):
+        """Moves up to `joules` (no more than stored, unless infinite, nor than dest can
+        take) from this pack to dest."""
+        amount = joules
+        if self.stored >= 0.0:
+            amount = min(self.stored, amount)
+        amount = min(amount, dest.remaining_capacity())
+        self.subtract(amount)
+        dest.add(amount)
+
+    def dissipate(self, joules):
+        """Loses energy as work or heat: all of it from an infinite supply, else no more than
+        is stored."""
+        amount = joules if self.stored < 0 else min(self.stored, joules)
+        self.subtract(amount)
+        self.dissipated += amount
+
+
+def load_energy(model, wf, entity):
+    """Model::Load's energy properties, in its order, onto model (power_pack, watts,
+    watts_give, watts_take, mass)."""
+    def pack():
+        if model.power_pack is None:
+            model.power_pack = PowerPack()
+        return model.power_pack
+
+    if wf.exists(entity, 'joules'):
+        p = pack()
+        j = wf.read_float(entity, 'joules', p.stored)
+        p.set_stored(j)
+        p.set_capacity(j)
+    if wf.exists(entity, 'joules_capacity'):
+        p = pack()
+        p.set_capacity(wf.read_float(entity, 'joules_capacity', p.capacity))
+    if wf.exists(entity, 'kjoules'):
+        p = pack()
+        j = 1000.0 * wf.read_float(entity, 'kjoules', p.stored)
+        p.set_stored(j)
+        p.set_capacity(j)
+    if wf.exists(entity, 'kjoules_capacity'):
+        p = pack()
+        p.set_capacity(1000.0 * wf.read_float(entity, 'kjoules_capacity', p.capacity))
+    model.watts = wf.read_float(entity, 'watts', model.watts)
+    model.watts_give = wf.read_float(entity, 'give_watts', model.watts_give)
+    model.watts_take = wf.read_float(entity, 'take_watts', model.watts_take)
+    model.mass = wf.read_float(entity, 'mass', model.mass)
+
+
+def find_power_pack(model):
+    """Model::FindPowerPack: the model's pack, or its nearest ancestor's, or None."""
+    m = model
+    while m is not None:
+        if m.power_pack is not None:
+            return m.power_pack
+        m = m.parent
+    return None
+
+
+def position_watts(mass, velocity):
+    """What a position model draws at the velocity it was commanded (x, y, z, a)."""
+    vx, vy, _, va = velocity
+    return POSITION_WATTS + (abs(vx) + abs(vy) + abs(va)) * POSITION_WATTS_KGMS * mass
+
+
+class Energy:
+    """A world's energy set and its per-step charge update.
+
+    world: what it reads, `space`, `models`, `updates`, `ppm`, `robot_of(model)`, and the
+    rank of each model in Stage's order (`rank`, a function)."""
+
+    def __init__(self, world, rank):
+        self.world = world
+        self.rank = rank
+        self.active = set()           # Stage's World::active_energy
+        self._order = []
+        self._charging = {}           # charger -> the packs it charged at its last update
+        self._static_cells = {}       # a static charger or taker -> its cells
+        self._static_takers = None
+
+    # ---- the models' lives (Model::Startup / Shutdown) -------------------------------------
+    def started(self, model):
+        if find_power_pack(model) is not None:
+            self._enable(model)
+        if model.kind == 'ranger':
+            model.watts = RANGER_WATTS_PER_SENSOR * len(model.sensors)
+        elif model.kind in STARTED_WATTS:
+            model.watts = STARTED_WATTS[model.kind]
+
+    def stopped(self, model):
+        if model.kind == 'ranger' or model.kind in STARTED_WATTS:
+            model.watts = 0.0
+        if model in self.active:
+            self.active.discard(model)
+            self._order = sorted(self.active, key=self.rank)
+
+    def _enable(self, model):
+        if model not in self.active:
+            self.active.add(model)
+            self._order = sorted(self.active, key=self.rank)
+
+    def position_updated(self, model, velocity):
+        """ModelPosition::Update's power draw, from the velocity before its bounds."""
+        model.watts = position_watts(model.mass, velocity)
+
+    # ---- World::Update's last part ---------------------------------------------------------
+    def update(self):
+        """Model::UpdateCharge of every model of the set, in Stage's order."""
+        for m in self._order:
+            self.update_charge(m)
+
+    def update_charge(self, model):
+        pack = find_power_pack(model)
+        if model.watts > 0:
+            pack.dissipate(model.watts * (ENERGY_INTERVAL_US * 1e-6))
+        if model.watts_give > 0:
+            for p in self._charging.pop(model, ()):
+                p.charging = False
+            charged = []
+            for toucher in self.touching(model):
+                his = find_power_pack(toucher)
+                if his is not None and toucher.watts_take > 0.0:
+                    rate = min(model.watts_give, toucher.watts_take)
+                    his.charging = True
+                    pack.transfer_to(his, rate * ENERGY_INTERVAL_US * 1e-6)
+                    charged.append(his)
+            self._charging[model] = charged
+
+    # ---- Block::AppendTouchingModels -------------------------------------------------------
+    def touching(self, model):
+        """The models, in Stage's order, with a block in a cell one of `model`'s own blocks is
+        drawn into in this step's layer, but those of model's own tree."""
+        world = self.world
+        space = world.space
+        layer = world.updates % 2
+        xs, ys = self._cells_of(model, layer)
+        found = set()
+        if xs.size:
+            self._dynamic_in(space, xs, ys, layer, found)
+            for other, (ox, oy) in self._takers().items():
+                if _share_cell(xs, ys, ox, oy):
+                    found.add(other.index)
+        root = model.root
+        models = world.models
+        return sorted((models[i] for i in found if models[i].root is not root), key=self.rank)
+
+    def _cells_of(self, model, layer):
+        """The cells the model's blocks are drawn into: from the grid for a moving model,
+        from its outline once for a static one."""
+        world = self.world
+        robot = world.robot_of(model.root)
+        if robot is None:
+            cells = self._static_cells.get(model)
+            if cells is None:
+                cells = self._static_cells[model] = outline_cells(model, world.ppm)
+            return cells
+        space = world.space
+        ks = [k for m, ids in robot.blocks if m is model for k in ids]
+        xs = [space.rc_x[layer, space.rc_start[k]:space.rc_start[k] + space.rc_len[layer, k]]
+              for k in ks]
+        ys = [space.rc_y[layer, space.rc_start[k]:space.rc_start[k] + space.rc_len[layer, k]]
+              for k in ks]
+        if not xs:
+            return np.zeros(0, np.int64), np.zeros(0, np.int64)
+        return np.concatenate(xs), np.concatenate(ys)
+
+    @staticmethod
+    def _dynamic_in(space, xs, ys, layer, found):
+        """Adds the model index of every moving block listed in the cells (xs, ys)."""
+        tx = (xs >> grid.RBITS) - space.rx0
+        ty = (ys >> grid.RBITS) - space.ry0
+        inside = (tx >= 0) & (ty >= 0) & (tx < space.nrx) & (ty < space.nry)
+        reg = np.where(inside, ty * space.nrx + tx, 0)
+        page = np.where(inside, space.reg_dyn[reg], -1)
+        cell = (ys & (grid.REGION - 1)) * grid.REGION + (xs & (grid.REGION - 1))
+        for k in np.flatnonzero(page >= 0):
+            e = space.dyn_head[page[k], layer, cell[k]]
+            while e >= 0:
+                found.add(int(space.blk_model[space.ent_block[e]]))
+                e = space.ent_next[e]
+
+    def _takers(self):
+        """The static models that could take a charge (take_watts and a pack), with their
+        cells: a charger touching a wall gives it nothing, so only these are looked at."""
+        if self._static_takers is None:
+            world = self.world
+            self._static_takers = {
+                m: outline_cells(m, world.ppm) for m in world.models
+                if world.robot_of(m.root) is None and m.watts_take > 0
+                and find_power_pack(m) is not None}
+        return self._static_takers
+
+
+def outline_cells(model, ppm):
+    """(x, y) cells of a model's blocks' outlines at its pose now (Stage's MapPoly)."""
+    xs, ys = [], []
+    for block in model.blocks:
+        vx, vy = model.pixel_vertices(block, ppm)
+        n = grid.poly_cell_count(vx, vy)
+        cx = np.empty(n, np.int64)
+        cy = np.empty(n, np.int64)
+        grid.poly_cells(vx, vy, cx, cy, 0)
+        xs.append(cx)
+        ys.append(cy)
+    if not xs:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    return np.concatenate(xs), np.concatenate(ys)
+
+
+def _share_cell(xs, ys, ox, oy):
+    a = set(zip(xs.tolist(), ys.tolist(), strict=True))
+    return any(c in a for c in zip(ox.tolist(), oy.tolist(), strict=True))
