@@ -80,7 +80,7 @@ def test_a_model_without_a_pack_draws_from_its_nearest_ancestors(tmp_path):
     w = world(tmp_path, 'position( name "r" kjoules 1 ranger( ) model( model( ) ) )\n')
     r = named(w, 'r')
     assert find_power_pack(r.children[1].children[0]) is r.power_pack
-    assert find_power_pack(named(w, 'model:0')) is None
+    assert find_power_pack(named(w, 'model:1')) is None   # Stage's first: model:1
 
 
 # ---- drawing -----------------------------------------------------------------------------------

@@ -135,7 +135,7 @@ class Model:
         self.interval_us = DEFAULT_INTERVAL_US
         self.ctrl = []           # [(the ctrl string, world file, line)]
         self.bitmap = None
-        self.flags = []          # the flags it carries (Stage's flag_list), oldest first
+        self.flags = []          # the flags it carries (Stage's flag_list), the top last
         self.used = False        # taken by GetUnusedModelOfType
         self.alwayson = False    # Stage subscribes it as it loads (`alwayson 1`)
         # the energy model's (energy.py): its own pack, what it draws, gives and takes, kg

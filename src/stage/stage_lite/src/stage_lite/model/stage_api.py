@@ -194,16 +194,16 @@ class ModelApi:
         return len(self._model.flags)
 
     def push_flag(self, flag):
-        """Model::PushFlag: on top of its flags (flag_incr callbacks)."""
+        """Model::PushFlag: on top of its flags, a stack (flag_incr callbacks)."""
         if flag is not None:
             self._model.flags.append(flag)
             self._world.scheduler.call(self._model, CB_FLAGINCR)
 
     def pop_flag(self):
-        """Model::PopFlag: the oldest flag, removed (flag_decr callbacks); None if none."""
+        """Model::PopFlag: the flag pushed last, removed (flag_decr callbacks); None if none."""
         if not self._model.flags:
             return None
-        flag = self._model.flags.pop(0)
+        flag = self._model.flags.pop()
         self._world.scheduler.call(self._model, CB_FLAGDECR)
         return flag
 
