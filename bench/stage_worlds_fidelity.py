@@ -99,6 +99,7 @@ def main(argv=None):
         print("stage_worlds_fidelity: no --worlds folder (Stage v4.3.0's worlds/, not in this "
               'repository): nothing to compare')
         return
+    from stage_lite.model.world import WorldError
     with open(os.path.join(GOLDEN, 'model_order.json')) as f:
         known = sorted(json.load(f))
     names = args.names or known
@@ -108,7 +109,11 @@ def main(argv=None):
     for world in names:
         if world not in known:
             sys.exit('unknown world %s (golden ones: %s)' % (world, ', '.join(known)))
-        r = check(world, args.worlds, args.seconds)
+        try:
+            r = check(world, args.worlds, args.seconds)
+        except WorldError as err:    # a controller not ported yet (fasr2): say so, go on
+            print('| %s | | | not run: %s | | |' % (world, err), flush=True)
+            continue
         ours = ', '.join('never (of %d)' % r['prefix'] if s is None else str(s) for s in r['ours'])
         stats = '; '.join('%s %d/%d (%.3g in %.3g..%.3g)' % (k, *v) for k, v in r['stats'].items())
         print('| %s | %d | %s | %s | %s | %.0f s in %.1f s (load %.1f s) |'
