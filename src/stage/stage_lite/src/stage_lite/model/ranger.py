@@ -60,10 +60,14 @@ class Ranger(Model):
     def ray_origin(self, sensor):
         """The first ray's pose (x, y, z, a) in the world, as Sensor::Update makes it: the
         sensor's pose, turned to the first beam, raised to half the transducer's height."""
+        return pose_add(self.body_pose(), self.ray_local(sensor))
+
+    @staticmethod
+    def ray_local(sensor):
+        """The first ray's pose in the ranger's body frame."""
         x, y, z, a = sensor.pose
         start = -sensor.fov / 2.0 if sensor.samples > 1 else 0.0
-        local = (x, y, z + sensor.size[2] / 2.0, a + start)
-        return pose_add(self.body_pose(), local)
+        return (x, y, z + sensor.size[2] / 2.0, a + start)
 
     @staticmethod
     def sample_increment(sensor):

@@ -33,6 +33,10 @@ class Scheduler:
         # what to do when an owned callback raises (it is then removed)
         self.owner = None
         self.on_error = None
+        # bumped at every change of subscriptions or update callbacks (the World keeps
+        # arrays of both, remade when this changes)
+        self.version = 0
+        self._queued_in = {}   # model -> the queues it has a slot in
 
     # ---- subscriptions -------------------------------------------------------------------
     def subscribed(self, model):
@@ -46,6 +50,8 @@ class Scheduler:
             queue = (self.random.random() % self.threads) + 1 if model.thread_safe else 0
             self.queue_of[model] = queue
             self.queues[queue].push(now_us + model.interval_us, model)
+            self._queued_in.setdefault(model, set()).add(queue)
+            self._requeue(model, model.interval_us)
             self.call(model, CB_STARTUP)
 
     def unsubscribe(self, model):
@@ -56,17 +62,29 @@ class Scheduler:
             return False
         self.subs[model] = count - 1
         if count == 1:
+            self._requeue(model, None)
             self.call(model, CB_SHUTDOWN)
             return True
         return False
+
+    def _requeue(self, model, interval):
+        """Every queue holding the model queues it again at `interval` (None: not again),
+        as its subscription now says."""
+        self.version += 1
+        for queue in self._queued_in.get(model, ()):
+            self.queues[queue].set_interval(model, interval)
 
     # ---- a step --------------------------------------------------------------------------
     def due(self, queue, now_us):
         """The models of one queue that update now, in Stage's order; each is queued again
         while subscribed."""
-        subs = self.subs
-        return self.queues[queue].consume(
-            now_us, lambda m: m.interval_us if subs.get(m, 0) > 0 else None)
+        q = self.queues[queue]
+        return [q.items[s] for s in q.consume_slots(now_us).tolist()]
+
+    def due_indices(self, queue, now_us):
+        """due() as the models' indices (int64 array)."""
+        q = self.queues[queue]
+        return q.tags[q.consume_slots(now_us)]
 
     # ---- callbacks -----------------------------------------------------------------------
     def add_callback(self, model, kind, function, argument=None):
@@ -74,6 +92,7 @@ class Scheduler:
             raise ValueError('unknown callback kind %r (one of %s)'
                              % (kind, ', '.join(CALLBACK_KINDS)))
         self.callbacks.setdefault((model, kind), []).append((function, argument, self.owner))
+        self.version += 1
 
     def has_callbacks(self, model, kind):
         return bool(self.callbacks.get((model, kind)))
@@ -85,6 +104,7 @@ class Scheduler:
             keep = [e for e in list(entries) if not self._run(e, model)]
             if len(keep) != len(entries):
                 self.callbacks[(model, kind)] = keep
+                self.version += 1
 
     def add_world_callback(self, function, argument=None):
         self.world_callbacks.append((function, argument, self.owner))

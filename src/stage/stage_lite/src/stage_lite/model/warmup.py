@@ -8,7 +8,8 @@ a body, a robot that moves into it, a camera, a fiducial finder and a blobfinder
 whose rays numba's threads share and one whose few rays are cast in the calling thread (with
 angular noise, and Stage's lasernoise controller on it) and Stage's wander on one robot
 calls every kernel with the argument types stageros uses (test_stage_warmup.py checks that
-none is left out).
+none is left out); a second world, whose robot stands on another model, the kernels a World
+moving its robots one by one calls.
 """
 import os
 import sys
@@ -26,6 +27,10 @@ position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) fiducial( ) blobfinder(
 position( pose [ -0.6 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) camera( resolution [ 8 6 ] )
           ctrl "wander" )
 position( pose [ 0 -0.6 0 0 ] size [ 0.3 0.3 0.2 ] short_laser( ) )
+'''
+# a robot on a table: the World moves it robot by robot (world.World._step_each)
+ON_A_MODEL = '''resolution 0.02
+model( pose [ 0 0 0 0 ] size [ 0.6 0.6 0.1 ] position( size [ 0.2 0.2 0.2 ] ) )
 '''
 
 
@@ -47,6 +52,13 @@ def warm():
             world.scan_from(robot.rangers[0], robot.model.pose)
         world.occupancy()
         warm_sensors(world)
+        path = os.path.join(tmp, 'on_a_model.world')
+        with open(path, 'w') as f:
+            f.write(ON_A_MODEL)
+        world = load_world(path)
+        world.set_command(0, 0.1, 0.0, 0.1)
+        for _ in range(2):
+            world.step()
 
 
 def warm_sensors(world):

@@ -36,12 +36,14 @@ import numpy as np
 from . import controllers, floor, grid, world_load
 from .blobfinder import Blobfinder
 from .camera import CameraRig
+from .casts import RangerCasts
 from .fiducial import Fiducial, FiducialIndex
 from .glibc_random import Rand48, Random
+from .motion import Motion
 from .noise import RangerNoise
 from .pose import pose_add, stage_normalize
-from .ranger import Ranger
 from .robot import body_row
+from .robot_state import RobotArrays
 from .scheduler import CB_UPDATE, Scheduler
 from .sight import Sight
 from .stage_api import api_of
@@ -50,7 +52,7 @@ from .worldfile import WorldError
 __all__ = ['World', 'WorldError', 'load_world']
 
 
-class World:
+class World(RangerCasts):
     """A loaded world. Use load_world()."""
 
     def __init__(self, path, seed=None, stageros=True, ctrlargs=''):
@@ -76,6 +78,10 @@ class World:
         self.show_clock_interval = loaded.show_clock_interval
         self.models = loaded.models
         self.robots = loaded.robots
+        # every robot's state, and its position model's pose, as rows of one set of arrays
+        self.state = RobotArrays(len(self.robots))
+        for r in self.robots:
+            r.bind(self.state)
         self.space = loaded.space
         self.warnings = loaded.warnings
         self.stageros_warnings = loaded.stageros_warnings
@@ -93,6 +99,16 @@ class World:
         self.ctrlargs = ctrlargs
         self.log = controllers.default_log     # run-time errors of controllers; a node's own
         self._robot_of = {r.model: r for r in self.robots}
+        # the robots' updates and moves in kernels, when every robot is a top-level model
+        # (its pose its world pose); else robot by robot (_step_each)
+        fast = all(r.model.parent is None for r in self.robots)
+        self.motion = Motion(self.robots, self.space) if fast else None
+        self._robot_slot = np.full(len(self.models), -1, np.int64)
+        for r in self.robots:
+            self._robot_slot[r.model.index] = r.index
+        self._kind = {k: np.array([isinstance(m, k) for m in self.models], np.bool_)
+                      for k in (Blobfinder, Fiducial)}
+        self._masks_version = None
         self._prepare_rays()
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models)
@@ -158,7 +174,74 @@ class World:
             r.stalled = False
 
     def step(self):
-        """One World::Update (see the module docstring)."""
+        """One World::Update (see the module docstring): every robot's update and move in
+        motion.py's kernels (or robot by robot, _step_each, when a robot stands on another
+        model), the updates of a queue taken as the models' indices."""
+        if self.motion is None:
+            self._step_each()
+            return
+        self.sim_time_us += self.interval_us
+        now = self.sim_time_us
+        dt = self.interval_us / 1e6
+        scheduler = self.scheduler
+        models = self.models
+        sensing = (self.updates + 1) % 2
+        subscribed, with_callbacks = self._masks()
+        self.fiducial_index.begin_step()
+        updated = [scheduler.due_indices(0, now)]
+        slots = self._robot_slot[updated[0]]
+        self.motion.update(self.robots, self.state, slots[slots >= 0], subscribed, dt)
+        for i in updated[0][self._kind[Blobfinder][updated[0]]].tolist():
+            models[i].update(self.sight, sensing)     # beside the position updates: apart
+        self.cameras.update(now)
+        self.motion.move(self.state, subscribed, dt, self.updates % 2)
+        for queue in range(1, self.threads + 1):
+            updated.append(scheduler.due_indices(queue, now))
+        every = np.concatenate(updated)
+        rangers = self._ranger_slot[every]
+        rangers = rangers[rangers >= 0]
+        if rangers.size:
+            self.cast_ranger_slots(rangers, sensing)
+        for ids in updated[1:]:
+            for i in ids[self._kind[Fiducial][ids]].tolist():
+                models[i].update(self.fiducial_index, self.sight, sensing)
+        self._call_updates(every, with_callbacks)
+        scheduler.call_world(self)
+        if rangers.size:
+            self._refresh_view_slots(rangers)   # what stageros then reads, callbacks' changes in
+        self.updates += 1
+
+    def _masks(self):
+        """(per robot: subscribed; per model: has update callbacks), remade when the
+        scheduler's subscriptions or callbacks have changed."""
+        scheduler = self.scheduler
+        if self._masks_version != scheduler.version:
+            self._subscribed = np.array([scheduler.subscribed(r.model) for r in self.robots],
+                                        np.bool_)
+            self._with_callbacks = np.array([scheduler.has_callbacks(m, CB_UPDATE)
+                                             for m in self.models], np.bool_)
+            self._masks_version = scheduler.version
+        return self._subscribed, self._with_callbacks
+
+    def _call_updates(self, every, with_callbacks):
+        """The update callbacks of the models `every` (indices, in update order) that have
+        some, each model's when its turn comes (a callback may add or remove others)."""
+        scheduler = self.scheduler
+        models = self.models
+        ids = every.tolist()
+        at = np.flatnonzero(with_callbacks[every]).tolist()
+        j = 0
+        while j < len(at):
+            p = at[j]
+            version = scheduler.version
+            scheduler.call(models[ids[p]], CB_UPDATE)
+            j += 1
+            if scheduler.version != version:      # callbacks changed: look again
+                _, with_callbacks = self._masks()
+                at = at[:j] + (p + 1 + np.flatnonzero(with_callbacks[every[p + 1:]])).tolist()
+
+    def _step_each(self):
+        """step() robot by robot (a robot stands on another model)."""
         self.sim_time_us += self.interval_us
         now = self.sim_time_us
         dt = self.interval_us / 1e6
@@ -255,162 +338,6 @@ class World:
         """Per block of the robot's tree: a new drawing number per model (MapWithChildren)."""
         return np.array([s for m, ks in r.blocks for s in [self.space.next_seq()] * len(ks)],
                         np.int64)
-
-    # ---- rays --------------------------------------------------------------------------
-    def _prepare_rays(self):
-        """Every sensor of every ranger the robots carry, in order, the tables of a cast of
-        them all, and the beam arrays their readings live in (each sensor's `ranges` and
-        `intensities` are views into them)."""
-        self._sensors = [(g, s) for r in self.robots for g in r.ranger_models
-                         for s in g.sensors]
-        self._sensor_ids = {}
-        for k, (g, _) in enumerate(self._sensors):
-            self._sensor_ids.setdefault(g, []).append(k)
-        self._all_sensors = list(range(len(self._sensors)))
-        self._rays = self._ray_tables(self._all_sensors)
-        self._subset_cache = {}
-        offsets = self._rays['offsets']
-        self._beam_ranges = np.zeros(int(offsets[-1]), np.float64)
-        self._beam_intensities = np.zeros(int(offsets[-1]), np.float64)
-        for k, (_, s) in enumerate(self._sensors):
-            s.ranges = self._beam_ranges[offsets[k]:offsets[k + 1]]
-            s.ranges[:] = s.range[1]
-            s.intensities = self._beam_intensities[offsets[k]:offsets[k + 1]]
-        self._views_of = {v.model: v for r in self.robots for v in r.rangers}
-        self._noise = dict(
-            rmax=np.array([s.range[1] for _, s in self._sensors], np.float64),
-            prop=np.array([s.noise[1] for _, s in self._sensors], np.float64),
-            const=np.array([s.noise[0] for _, s in self._sensors], np.float64),
-            angular=np.array([s.noise[2] != 0.0 for _, s in self._sensors], np.bool_))
-
-    def _ray_tables(self, due):
-        """The per-sensor tables of the sensors `due` (indices into _sensors) for
-        Space.cast."""
-        sensors = [self._sensors[k] for k in due]
-        counts = np.array([s.samples for _, s in sensors], np.int64)
-        return dict(
-            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
-            sensor=np.repeat(np.arange(len(sensors), dtype=np.int64), counts),
-            incr=np.array([Ranger.sample_increment(s) for _, s in sensors], np.float64),
-            rmax=np.array([s.range[1] for _, s in sensors], np.float64),
-            ray_class=np.array([self._ray_zs.index(g.ray_origin(s)[2]) for g, s in sensors],
-                               np.int64),
-            root=np.array([g.root.index for g, _ in sensors], np.int64),
-            origins=np.empty((len(sensors), 4), np.float64))
-
-    def _subset_tables(self, positions):
-        """_ray_tables of some sensors, kept for the next step that casts the same ones (in
-        Stage's own program only the controllers' rangers update, the same every step)."""
-        key = tuple(positions)
-        cached = self._subset_cache.get(key)
-        if cached is None:
-            if len(self._subset_cache) > 64:
-                self._subset_cache.clear()
-            cached = self._subset_cache[key] = self._ray_tables(positions)
-        return cached
-
-    def _refresh_views(self, rangers):
-        """stageros's views of the rangers that updated: their first sensor's readings."""
-        views = self._views_of
-        for g in rangers:
-            v = views.get(g)
-            if v is not None:
-                s = v.sensor
-                v.ranges[:] = s.ranges
-                v.intensities[:] = s.intensities
-                v.has_data = True
-
-    def cast_rays(self, due=None, layer=None):
-        """Casts the rays of the sensors `due` (indices into the world's sensors, in the
-        order their noise is drawn; default all) from the robots' poses now, through `layer`
-        (default: the one the next step's rays read), and stores each sensor's readings."""
-        if layer is None:
-            layer = (self.updates + 1) % 2
-        due = self._all_sensors if due is None else due
-        every = len(due) == len(self._sensors)
-        positions = self._all_sensors if every else sorted(due)
-        tables = self._rays if every else self._subset_tables(positions)
-        origins = tables['origins']
-        for i, k in enumerate(positions):
-            g, s = self._sensors[k]
-            origins[i] = g.ray_origin(s)
-        rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
-                                   tables['rmax'], tables['ray_class'], tables['root'], layer)
-        rr = self.space.model_rr
-        intensities = np.where(hit >= 0, rr[np.maximum(hit, 0)], 0.0)
-        offsets = tables['offsets']
-        row = {k: i for i, k in enumerate(positions)}
-        self._draw_noise(rng, offsets, [row[k] for k in due], positions, layer)
-        if every:
-            self._beam_ranges[:] = rng
-            self._beam_intensities[:] = intensities
-        else:
-            for i, k in enumerate(positions):
-                _, s = self._sensors[k]
-                s.ranges[:] = rng[offsets[i]:offsets[i + 1]]
-                s.intensities[:] = intensities[offsets[i]:offsets[i + 1]]
-
-    def _draw_noise(self, rng, offsets, rows, positions, layer):
-        """Stage's draws of each sensor (rows of the cast, in Stage's order), noise added to
-        rng in place; a sensor with angular noise casts its beams again, one at a time, at
-        the angles its draws turn them to."""
-        sensor_of = np.asarray(positions, np.int64)
-        angular = self._noise['angular'][sensor_of]
-        if not angular.any():
-            self.noise.apply_rows(rng, offsets, np.asarray(rows, np.int64),
-                                  self._noise['rmax'][sensor_of],
-                                  self._noise['prop'][sensor_of],
-                                  self._noise['const'][sensor_of])
-            return
-        for i in rows:
-            g, s = self._sensors[positions[i]]
-            beams = slice(offsets[i], offsets[i + 1])
-            if not angular[i]:
-                self.noise.apply_rows(rng, offsets, np.array([i], np.int64),
-                                      self._noise['rmax'][sensor_of],
-                                      self._noise['prop'][sensor_of],
-                                      self._noise['const'][sensor_of])
-                continue
-            rng[beams] = self._angular_scan(g, s, layer)
-
-    def _angular_scan(self, g, s, layer):
-        """A sensor with angular noise, beam by beam as Sensor::Update casts it: each beam's
-        angle (kept as a float, as Stage's is) turned by its draw, cast, then its range
-        noise drawn."""
-        x, y, z, a = g.ray_origin(s)
-        incr = Ranger.sample_increment(s)
-        tables = self._ray_tables([self._sensors.index((g, s))])
-        tables['sensor'] = np.zeros(1, np.int64)
-        tables['offsets'] = np.array([0, 1], np.int64)
-        out = np.empty(s.samples, np.float64)
-        for t in range(s.samples):
-            saved = float(np.float32(a))
-            turned = float(np.float32(a + incr * s.noise[2] * self.noise.angle_noise() * 0.5))
-            tables['origins'][0] = (x, y, z, turned)
-            rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
-                                     tables['sensor'], tables['rmax'], tables['ray_class'],
-                                     tables['root'], layer)
-            out[t] = self.noise.range_noise(float(rng[0]), s.range[1], s.noise)
-            a = saved + incr
-        return out
-
-    def scan_from(self, view, pose):
-        """The ranges (float32) `view` reads with its robot at `pose` (x, y, z, a), through
-        the layer the last step's rays read. In Stage the rangers run in a worker thread
-        beside the moves: now and then one starts before its robot has moved, and its scan
-        is this one with the robot's pose before the step."""
-        robot = view.model.parent
-        keep = robot.pose
-        robot.pose = pose
-        try:
-            tables = self._ray_tables([self._sensors.index((view.model, view.sensor))])
-            tables['origins'][0] = view.model.ray_origin(view.sensor)
-        finally:
-            robot.pose = keep
-        rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
-                                 tables['sensor'], tables['rmax'], tables['ray_class'],
-                                 tables['root'], self.updates % 2)
-        return rng.astype(np.float32)
 
     # ---- pictures and maps ---------------------------------------------------------------
     def occupancy(self):
