@@ -43,6 +43,8 @@ class RangerCasts:
         self._beam_intensities = np.zeros(int(offsets[-1]), np.float64)
         for k, (_, s) in enumerate(self._sensors):
             s.ranges = self._beam_ranges[offsets[k]:offsets[k + 1]]
+            s.beams = self._beam_ranges
+            s.beam_at = int(offsets[k])
             s.ranges[:] = s.range[1]
             s.intensities = self._beam_intensities[offsets[k]:offsets[k + 1]]
         self._views_of = {v.model: v for r in self.robots for v in r.rangers}

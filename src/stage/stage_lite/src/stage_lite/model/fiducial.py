@@ -56,7 +56,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import models
+from .jit import njit
+from .motion import normalize
+from .motion import pose_add as pose_add_kernel
 from .pose import pose_add, stage_normalize
+from .raytrace import trace
 
 DEFAULT_RANGE_MAX = 8.0          # max_range_anon, m
 DEFAULT_RANGE_MAX_ID = 5.0       # max_range_id, m
@@ -113,6 +117,12 @@ class FiducialIndex:
         poses = [(m.global_pose(), self.rank(m), m) for m in self.models]
         self._by_x = [m for _, _, m in sorted(poses, key=lambda t: (t[0][0], t[1]))]
         self._by_y = [m for _, _, m in sorted(poses, key=lambda t: (t[0][1], t[1]))]
+        # the same as arrays for update_all: the sets' models, their orders, their ranks
+        self._members = [m for _, _, m in poses]
+        place = {m: k for k, m in enumerate(self._members)}
+        self._order_x = np.array([place[m] for m in self._by_x], np.int64)
+        self._order_y = np.array([place[m] for m in self._by_y], np.int64)
+        self._ranks = np.array([r for _, r, _ in poses], np.float64)
 
     def nearby(self, x, y, rng):
         """The candidates of a finder at global (x, y) with range rng, in Stage's order
@@ -159,7 +169,9 @@ class Fiducial(models.Fiducial):
         self.range_max_id = DEFAULT_RANGE_MAX_ID
         self.fov = DEFAULT_FOV
         self.ignore_zloc = False
-        self.fiducials = []
+        self._fiducials = []
+        # (members, their poses, the readings' numbers, nearest()) while not yet made
+        self._seen = None
 
     def load(self, wf, rng):
         """ModelFiducial::Load: Model::Load, then the finder's own properties."""
@@ -178,6 +190,11 @@ class Fiducial(models.Fiducial):
     def update(self, index, sight, layer):
         """ModelFiducial::Update: the readings (self.fiducials, also returned) of the
         candidates index offers, rays through the grid's `layer`."""
+        update_all([self], index, sight, layer)
+        return self.fiducials
+
+    def update_one_by_one(self, index, sight, layer):
+        """update(), candidate by candidate in Python (sees(): the rule as written)."""
         gx, gy, _, _ = self.global_pose()
         self.fiducials = []
         for him in index.nearby(gx, gy, self.range_max):
@@ -185,6 +202,33 @@ class Fiducial(models.Fiducial):
             if reading is not None:
                 self.fiducials.append(reading)
         return self.fiducials
+
+    @property
+    def fiducials(self):
+        """What the last update saw (FiducialReadings, Stage's order); made from the
+        kernel's numbers when first asked."""
+        if self._seen is not None:
+            members, poses, rows, _ = self._seen
+            self._seen = None
+            self._fiducials = [_reading(members[c], poses[c], rng, bearing, geom_a, fid)
+                               for c, rng, bearing, geom_a, fid in rows]
+        return self._fiducials
+
+    @fiducials.setter
+    def fiducials(self, value):
+        self._fiducials = value
+        self._seen = None
+
+    def nearest(self):
+        """(range, his heading relative to the finder's) of the first reading of the least
+        range, or None (what pioneer_flocking takes of the last update)."""
+        if self._seen is not None:
+            return self._seen[3]
+        best = None
+        for seen in self._fiducials:
+            if seen.range < (best.range if best is not None else 1e6):
+                best = seen
+        return None if best is None else (best.range, best.geom[3])
 
     def sees(self, him, sight, layer):
         """AddModelIfVisible: the reading of `him`, or None."""
@@ -214,3 +258,151 @@ class Fiducial(models.Fiducial):
             model=him, range=rng, bearing=dtheta,
             geom=(size[0], size[1], size[2], stage_normalize(hispose[3] - ma)),
             pose=hispose, id=him.fiducial_return if rng < self.range_max_id else 0)
+
+
+def _reading(him, hispose, rng, bearing, geom_a, fid):
+    size = him.geom_size
+    return FiducialReading(model=him, range=rng, bearing=bearing,
+                           geom=(size[0], size[1], size[2], geom_a), pose=tuple(hispose),
+                           id=fid)
+
+
+def update_all(finders, index, sight, layer):
+    """ModelFiducial::Update of each finder in turn, as Fiducial.update_one_by_one does it,
+    in one kernel: the candidates (index's sets, their global poses now), the rule and the
+    rays (sight's). Nothing moves between the finders' updates, so the poses are read once."""
+    members = index._members
+    if not members:
+        for f in finders:
+            f.fiducials = []
+        return
+    poses = np.array([m.global_pose() for m in members], np.float64)
+    cand = dict(key=np.array([m.fiducial_key for m in members], np.int64),
+                root=np.array([m.root.index for m in members], np.int64),
+                index=np.array([m.index for m in members], np.int64),
+                ret=np.array([m.fiducial_return for m in members], np.int64))
+    n = len(finders)
+    fin = np.zeros((n, 10), np.float64)
+    tables = []
+    classes = np.zeros(n, np.int64)
+    for i, f in enumerate(finders):
+        gx, gy, _, ga = f.global_pose()
+        bx, by, bz, ba = f.body_pose()
+        table = sight.static_first(bz, f.root.index)
+        for k, t in enumerate(tables):
+            if t is table:
+                classes[i] = k
+                break
+        else:
+            classes[i] = len(tables)
+            tables.append(table)
+        fin[i] = (gx, gy, ga, bx, by, bz, ba, f.range_max, f.range_max_id, f.fov)
+    ints = np.array([(f.fiducial_key, f.root.index, int(f.ignore_zloc)) for f in finders],
+                    np.int64).reshape(n, 3)
+    st = tables[0] if len(tables) == 1 else np.concatenate(tables)
+    sp = sight.space
+    count = np.zeros(n, np.int64)
+    cap = n * len(members)
+    out_c = np.empty(cap, np.int64)
+    out_f = np.empty((cap, 3), np.float64)
+    out_id = np.empty(cap, np.int64)
+    _see_all(fin, ints, classes, poses, index._order_x, index._order_y, index._ranks,
+             cand['key'], cand['root'], cand['index'], cand['ret'], layer, sp.ppm, sp.rx0,
+             sp.ry0, sp.nrx, sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st,
+             sp.dyn_head, sp.ent_block, sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin,
+             sp.blk_zmax, sight.model_root, sight.visible, count, out_c, out_f, out_id)
+    at = 0
+    pose_list = poses.tolist()
+    for i, f in enumerate(finders):
+        k = int(count[i])
+        f._fiducials = []
+        rows = list(zip(out_c[at:at + k].tolist(), out_f[at:at + k, 0].tolist(),
+                        out_f[at:at + k, 1].tolist(), out_f[at:at + k, 2].tolist(),
+                        out_id[at:at + k].tolist(), strict=True))
+        best = None
+        for row in rows:
+            if row[1] < (best[1] if best is not None else 1e6):
+                best = row
+        f._seen = (members, pose_list, rows, None if best is None else (best[1], best[3]))
+        at += k
+
+
+@njit(cache=True)
+def _bisect_right(keys, order, x):
+    """bisect.bisect_right over keys[order[...]] (sorted or not, as Python's does it)."""
+    lo = 0
+    hi = order.shape[0]
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if x < keys[order[mid]]:
+            hi = mid
+        else:
+            lo = mid + 1
+    return lo
+
+
+@njit(cache=True)
+def _see_all(fin, ints, classes, poses, order_x, order_y, ranks, key, root, index, ret,
+             layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
+             dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+             model_root, visible, count, out_c, out_f, out_id):
+    """Each finder's update (fin: gx, gy, ga, body x, y, z, a, range_max, range_max_id, fov;
+    ints: key, root, ignore_zloc): its readings appended to out (candidate, range, bearing,
+    his heading relative to the finder's, id), count[i] of them."""
+    m = poses.shape[0]
+    xs = poses[:, 0].copy()
+    ys = poses[:, 1].copy()
+    in_x = np.zeros(m, np.bool_)
+    picked = np.empty(m, np.int64)
+    at = 0
+    for i in range(fin.shape[0]):
+        gx, gy, ma = fin[i, 0], fin[i, 1], fin[i, 2]
+        rmax = fin[i, 7]
+        # the candidates: Stage's box, by the sets' bounds (nearby, _above)
+        sx = _bisect_right(xs, order_x, gx - rmax)
+        ex = _bisect_right(xs, order_x, gx + rmax)
+        sy = _bisect_right(ys, order_y, gy - rmax)
+        ey = _bisect_right(ys, order_y, gy + rmax)
+        in_x[:] = False
+        for k in range(sx, ex):
+            in_x[order_x[k]] = True
+        n = 0
+        for k in range(sy, ey):
+            c = order_y[k]
+            if in_x[c]:
+                in_x[c] = False         # a model is in a set once
+                picked[n] = c
+                n += 1
+        cands = picked[:n][np.argsort(ranks[picked[:n]], kind='mergesort')]
+        seen = 0
+        for c in cands:
+            if ints[i, 0] != key[c]:
+                continue
+            dx = poses[c, 0] - gx
+            dy = poses[c, 1] - gy
+            rng = math.hypot(dy, dx)
+            if rng >= rmax:
+                continue
+            dtheta = normalize(math.atan2(dy, dx) - ma)
+            if abs(dtheta) > fin[i, 9] / 2.0:
+                continue
+            if root[c] == ints[i, 1]:
+                continue
+            ox, oy, oz, oa = pose_add_kernel(fin[i, 3], fin[i, 4], fin[i, 5], fin[i, 6], 0.0,
+                                             0.0, 0.0, dtheta)
+            _, hit = trace(ox, oy, oz, oa, rmax, ppm, classes[i], ints[i, 1], layer, rx0, ry0,
+                           nrx, nry, reg_count, reg_static, reg_dyn, st_first, dyn_head,
+                           ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+                           model_root, visible)
+            if ints[i, 2] != 0 and hit < 0:
+                hit = index[c]
+            if hit != index[c]:
+                continue
+            out_c[at] = c
+            out_f[at, 0] = rng
+            out_f[at, 1] = dtheta
+            out_f[at, 2] = normalize(poses[c, 3] - ma)
+            out_id[at] = ret[c] if rng < fin[i, 8] else 0
+            at += 1
+            seen += 1
+        count[i] = seen

@@ -27,6 +27,9 @@ class Sensor:
         # what its last update read (the world points these into its beam arrays)
         self.ranges = None
         self.intensities = None
+        # the world's beam array the ranges view, and where they start in it
+        self.beams = None
+        self.beam_at = 0
 
     def load(self, wf, e):
         self.where = (wf.entities[e].path, wf.entities[e].line)

@@ -85,6 +85,10 @@ class Robot:
         self._i = self.index
         self.model.bind_pose(state.pose, self.index)
 
+    def command_rows(self):
+        """(goal array, mode array, row) of the arrays the command lives in."""
+        return self._st.goal, self._st.mode, self._i
+
     @property
     def goal(self):
         """The last command (x, y, z, a): cmd_vel, SetSpeed, SetAcceleration or GoTo."""

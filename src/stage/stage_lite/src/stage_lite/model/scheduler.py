@@ -10,6 +10,15 @@ thread, the workers' beside the moves, then, in series, calls the update callbac
 model that updated, queue by queue in the order they updated, then the world's callbacks.
 The workers' queues are taken here one after the other, 1 to threads: in Stage they race
 each other, so any fixed order is one Stage could have given.
+
+Batches: a model whose only update callback has a `batch` attribute may have it called
+together with the next models' of the same batch (World.step does so), through
+batch.prepare(entries) (a plan for all the world's (function, argument, owner) entries of
+that batch, or None: call them one by one) and batch.run(plan, rows), which calls the
+entries `rows` (their places in `entries`, an int64 array) in turn; it must leave
+everything as calling them in turn would (each with its argument, returning false) and
+return how many it did: the one after those is then called on its own, and the rest after
+it.
 """
 from .events import EventQueue
 

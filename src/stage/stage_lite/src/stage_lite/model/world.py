@@ -37,7 +37,7 @@ from . import controllers, floor, grid, world_load
 from .blobfinder import Blobfinder
 from .camera import CameraRig
 from .casts import RangerCasts
-from .fiducial import Fiducial, FiducialIndex
+from .fiducial import Fiducial, FiducialIndex, update_all
 from .glibc_random import Rand48, Random
 from .motion import Motion
 from .noise import RangerNoise
@@ -109,6 +109,9 @@ class World(RangerCasts):
         self._kind = {k: np.array([isinstance(m, k) for m in self.models], np.bool_)
                       for k in (Blobfinder, Fiducial)}
         self._masks_version = None
+        # controllers' callbacks of one batch run together (scheduler.py); False: each on
+        # its own (the same run: the tests compare the two)
+        self.batches = True
         self._prepare_rays()
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models)
@@ -202,9 +205,9 @@ class World(RangerCasts):
         rangers = rangers[rangers >= 0]
         if rangers.size:
             self.cast_ranger_slots(rangers, sensing)
-        for ids in updated[1:]:
-            for i in ids[self._kind[Fiducial][ids]].tolist():
-                models[i].update(self.fiducial_index, self.sight, sensing)
+        finders = [models[i] for ids in updated[1:] for i in ids[self._kind[Fiducial][ids]]]
+        if finders:
+            update_all(finders, self.fiducial_index, self.sight, sensing)
         self._call_updates(every, with_callbacks)
         scheduler.call_world(self)
         if rangers.size:
@@ -213,32 +216,67 @@ class World(RangerCasts):
 
     def _masks(self):
         """(per robot: subscribed; per model: has update callbacks), remade when the
-        scheduler's subscriptions or callbacks have changed."""
+        scheduler's subscriptions or callbacks have changed, and with them the batches
+        (scheduler.py): per model, its only update callback's batch (its number, 0 for
+        none) and its row in that batch's plan."""
         scheduler = self.scheduler
         if self._masks_version != scheduler.version:
             self._subscribed = np.array([scheduler.subscribed(r.model) for r in self.robots],
                                         np.bool_)
-            self._with_callbacks = np.array([scheduler.has_callbacks(m, CB_UPDATE)
-                                             for m in self.models], np.bool_)
+            entries = [scheduler.callbacks.get((m, CB_UPDATE)) for m in self.models]
+            self._with_callbacks = np.array([bool(e) for e in entries], np.bool_)
+            self._batches = [None]
+            self._batch_entries = [None]
+            self._batch_id = np.zeros(len(self.models), np.int64)
+            self._batch_row = np.zeros(len(self.models), np.int64)
+            for i, e in enumerate(entries):
+                batch = getattr(e[0][0], 'batch', None) if e and len(e) == 1 else None
+                if batch is None or not self.batches:
+                    continue
+                if batch not in self._batches:
+                    self._batches.append(batch)
+                    self._batch_entries.append([])
+                b = self._batches.index(batch)
+                self._batch_id[i] = b
+                self._batch_row[i] = len(self._batch_entries[b])
+                self._batch_entries[b].append(e[0])
+            self._plans = {}
             self._masks_version = scheduler.version
         return self._subscribed, self._with_callbacks
 
     def _call_updates(self, every, with_callbacks):
         """The update callbacks of the models `every` (indices, in update order) that have
-        some, each model's when its turn comes (a callback may add or remove others)."""
+        some, each model's when its turn comes (a callback may add or remove others); runs
+        of models of one batch together."""
         scheduler = self.scheduler
         models = self.models
-        ids = every.tolist()
-        at = np.flatnonzero(with_callbacks[every]).tolist()
+        at = np.flatnonzero(with_callbacks[every])
+        bids = self._batch_id[every[at]]
         j = 0
-        while j < len(at):
-            p = at[j]
+        while j < at.size:
+            p = int(at[j])
+            b = int(bids[j])
+            if b:
+                k = j + int(np.argmax(bids[j:] != b)) if (bids[j:] != b).any() else at.size
+                done = self._run_batch(b, self._batch_row[every[at[j:k]]])
+                j += done
+                if done:
+                    continue
             version = scheduler.version
-            scheduler.call(models[ids[p]], CB_UPDATE)
+            scheduler.call(models[int(every[p])], CB_UPDATE)
             j += 1
             if scheduler.version != version:      # callbacks changed: look again
                 _, with_callbacks = self._masks()
-                at = at[:j] + (p + 1 + np.flatnonzero(with_callbacks[every[p + 1:]])).tolist()
+                at = np.concatenate((at[:j], p + 1 + np.flatnonzero(with_callbacks[every[p + 1:]])))
+                bids = self._batch_id[every[at]]
+
+    def _run_batch(self, b, rows):
+        """Batch b's callbacks of the rows `rows` (its plan's), in turn: how many were
+        done (0: call the first on its own)."""
+        plan = self._plans.get(b, False)
+        if plan is False:
+            plan = self._plans[b] = self._batches[b].prepare(self._batch_entries[b])
+        return 0 if plan is None else self._batches[b].run(plan, rows)
 
     def _step_each(self):
         """step() robot by robot (a robot stands on another model)."""
