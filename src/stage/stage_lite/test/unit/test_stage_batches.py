@@ -88,10 +88,10 @@ def test_the_kernels_move_every_robot_as_the_world_does_one_by_one(tmp_path):
     assert stalls > 0                    # the test drove into something
 
 
-def flocking_world(tmp_path, n=12):
+def flocking_world(tmp_path, n=12, columns=4, spacing=1.1):
     body = ''.join('position( name "p%d" pose [ %s ] size [ 0.35 0.3 0.25 ] fiducial_return 1'
                    ' %s fiducial( range_max 4 ) ctrl "pioneer_flocking" )\n'
-                   % (k, place(k, 4, 1.1), SONARS) for k in range(n))
+                   % (k, place(k, columns, spacing), SONARS) for k in range(n))
     return write(tmp_path, body)
 
 
@@ -115,8 +115,10 @@ def test_the_batches_are_the_callbacks_one_by_one(tmp_path, make):
     assert np.abs(batched.state.velocity).sum() > 0
 
 
-def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch):
-    path = flocking_world(tmp_path)
+@pytest.mark.parametrize('robots', [12, 34])     # 34 * 34 pairs: the threads' kernel
+def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robots):
+    assert (robots * robots >= fiducial_module.PARALLEL_CANDIDATES) == (robots == 34)
+    path = flocking_world(tmp_path, robots, 7, 0.7)
     fast, each = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
                                                                        stageros=False)
 

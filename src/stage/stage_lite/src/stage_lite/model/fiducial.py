@@ -56,7 +56,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import models
-from .jit import njit
+from .jit import njit, prange
 from .motion import normalize
 from .motion import pose_add as pose_add_kernel
 from .pose import pose_add, stage_normalize
@@ -65,6 +65,9 @@ from .raytrace import trace
 DEFAULT_RANGE_MAX = 8.0          # max_range_anon, m
 DEFAULT_RANGE_MAX_ID = 5.0       # max_range_id, m
 DEFAULT_FOV = math.pi            # rad
+#: From this many finder-candidate pairs in a step, the finders are shared among numba's
+#: threads (each pair may cost a ray).
+PARALLEL_CANDIDATES = 1000
 
 
 @dataclass(frozen=True)
@@ -79,6 +82,12 @@ class FiducialReading:
     id: int            # his fiducial_return, or 0 at range_max_id and beyond
 
 
+def python_poses(models, body=False):
+    """Model.global_pose (or body_pose) of each model, as an (n, 4) array."""
+    return np.array([m.body_pose() if body else m.global_pose() for m in models],
+                    np.float64).reshape(-1, 4)
+
+
 class FiducialIndex:
     """World::models_with_fiducials and its two sets sorted by x and by y.
 
@@ -89,6 +98,9 @@ class FiducialIndex:
 
     def __init__(self, models, rank=None):
         self.rank = rank if rank is not None else (lambda m: m.index)
+        # poses(models, body=False): their global poses (or their bodies' frames) now, an
+        # (n, 4) array; the World gives its kernels' (World.global_poses)
+        self.poses = python_poses
         self.models = []      # Stage's vector: insertion order (erase, then push_back)
         for m in models:
             self.set_return(m, m.fiducial_return)
@@ -114,15 +126,14 @@ class FiducialIndex:
     def begin_step(self):
         """World::Update's first work: the sets sorted by global x and by global y (ties by
         address: rank) rebuilt from the fiducial-bearing models' poses now."""
-        poses = [(m.global_pose(), self.rank(m), m) for m in self.models]
-        self._by_x = [m for _, _, m in sorted(poses, key=lambda t: (t[0][0], t[1]))]
-        self._by_y = [m for _, _, m in sorted(poses, key=lambda t: (t[0][1], t[1]))]
-        # the same as arrays for update_all: the sets' models, their orders, their ranks
-        self._members = [m for _, _, m in poses]
-        place = {m: k for k, m in enumerate(self._members)}
-        self._order_x = np.array([place[m] for m in self._by_x], np.int64)
-        self._order_y = np.array([place[m] for m in self._by_y], np.int64)
-        self._ranks = np.array([r for _, r, _ in poses], np.float64)
+        members = self._members = list(self.models)
+        poses = self.poses(members)
+        self._ranks = np.array([self.rank(m) for m in members], np.float64)
+        # stable sorts: equal (x, rank) keep the models' order, as sorted() does
+        self._order_x = np.lexsort((self._ranks, poses[:, 0]))
+        self._order_y = np.lexsort((self._ranks, poses[:, 1]))
+        self._by_x = [members[k] for k in self._order_x.tolist()]
+        self._by_y = [members[k] for k in self._order_y.tolist()]
 
     def nearby(self, x, y, rng):
         """The candidates of a finder at global (x, y) with range rng, in Stage's order
@@ -170,7 +181,8 @@ class Fiducial(models.Fiducial):
         self.fov = DEFAULT_FOV
         self.ignore_zloc = False
         self._fiducials = []
-        # (members, their poses, the readings' numbers, nearest()) while not yet made
+        # (members, their poses, the kernel's output, where and how many of it are this
+        # finder's readings, nearest()) while the readings are not made
         self._seen = None
 
     def load(self, wf, rng):
@@ -208,10 +220,14 @@ class Fiducial(models.Fiducial):
         """What the last update saw (FiducialReadings, Stage's order); made from the
         kernel's numbers when first asked."""
         if self._seen is not None:
-            members, poses, rows, _ = self._seen
+            members, poses, (out_c, out_f, out_id), at, count, _ = self._seen
             self._seen = None
-            self._fiducials = [_reading(members[c], poses[c], rng, bearing, geom_a, fid)
-                               for c, rng, bearing, geom_a, fid in rows]
+            end = at + count
+            self._fiducials = [
+                _reading(members[c], poses[c].tolist(), rng, bearing, geom_a, fid)
+                for c, (rng, bearing, geom_a), fid in zip(
+                    out_c[at:end].tolist(), out_f[at:end].tolist(), out_id[at:end].tolist(),
+                    strict=True)]
         return self._fiducials
 
     @fiducials.setter
@@ -223,7 +239,7 @@ class Fiducial(models.Fiducial):
         """(range, his heading relative to the finder's) of the first reading of the least
         range, or None (what pioneer_flocking takes of the last update)."""
         if self._seen is not None:
-            return self._seen[3]
+            return self._seen[5]
         best = None
         for seen in self._fiducials:
             if seen.range < (best.range if best is not None else 1e6):
@@ -276,19 +292,20 @@ def update_all(finders, index, sight, layer):
         for f in finders:
             f.fiducials = []
         return
-    poses = np.array([m.global_pose() for m in members], np.float64)
-    cand = dict(key=np.array([m.fiducial_key for m in members], np.int64),
-                root=np.array([m.root.index for m in members], np.int64),
-                index=np.array([m.index for m in members], np.int64),
-                ret=np.array([m.fiducial_return for m in members], np.int64))
+    poses = index.poses(members)
+    cand = np.array([(m.fiducial_key, m.root.index, m.index, m.fiducial_return)
+                     for m in members], np.int64)
     n = len(finders)
-    fin = np.zeros((n, 10), np.float64)
+    fin = np.empty((n, 10), np.float64)
+    fin[:, 0:3] = index.poses(finders)[:, (0, 1, 3)]
+    fin[:, 3:7] = index.poses(finders, body=True)
+    fin[:, 7:10] = [(f.range_max, f.range_max_id, f.fov) for f in finders]
+    ints = np.array([(f.fiducial_key, f.root.index, int(f.ignore_zloc)) for f in finders],
+                    np.int64)
     tables = []
     classes = np.zeros(n, np.int64)
     for i, f in enumerate(finders):
-        gx, gy, _, ga = f.global_pose()
-        bx, by, bz, ba = f.body_pose()
-        table = sight.static_first(bz, f.root.index)
+        table = sight.static_first(float(fin[i, 5]), f.root.index)
         for k, t in enumerate(tables):
             if t is table:
                 classes[i] = k
@@ -296,35 +313,23 @@ def update_all(finders, index, sight, layer):
         else:
             classes[i] = len(tables)
             tables.append(table)
-        fin[i] = (gx, gy, ga, bx, by, bz, ba, f.range_max, f.range_max_id, f.fov)
-    ints = np.array([(f.fiducial_key, f.root.index, int(f.ignore_zloc)) for f in finders],
-                    np.int64).reshape(n, 3)
     st = tables[0] if len(tables) == 1 else np.concatenate(tables)
     sp = sight.space
     count = np.zeros(n, np.int64)
+    nearest = np.zeros((n, 3), np.float64)      # range, heading, whether any
     cap = n * len(members)
-    out_c = np.empty(cap, np.int64)
-    out_f = np.empty((cap, 3), np.float64)
-    out_id = np.empty(cap, np.int64)
-    _see_all(fin, ints, classes, poses, index._order_x, index._order_y, index._ranks,
-             cand['key'], cand['root'], cand['index'], cand['ret'], layer, sp.ppm, sp.rx0,
-             sp.ry0, sp.nrx, sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st,
-             sp.dyn_head, sp.ent_block, sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin,
-             sp.blk_zmax, sight.model_root, sight.visible, count, out_c, out_f, out_id)
-    at = 0
-    pose_list = poses.tolist()
-    for i, f in enumerate(finders):
-        k = int(count[i])
+    out = (np.empty(cap, np.int64), np.empty((cap, 3), np.float64), np.empty(cap, np.int64))
+    see = _see_all_parallel if n * len(members) >= PARALLEL_CANDIDATES else _see_all
+    see(fin, ints, classes, poses, index._order_x, index._order_y, index._ranks,
+             cand[:, 0], cand[:, 1], cand[:, 2], cand[:, 3], layer, sp.ppm, sp.rx0, sp.ry0,
+             sp.nrx, sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st, sp.dyn_head,
+             sp.ent_block, sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin, sp.blk_zmax,
+             sight.model_root, sight.visible, count, nearest, *out)
+    m = len(members)
+    for i, (f, k, near) in enumerate(zip(finders, count.tolist(), nearest.tolist(),
+                                         strict=True)):
         f._fiducials = []
-        rows = list(zip(out_c[at:at + k].tolist(), out_f[at:at + k, 0].tolist(),
-                        out_f[at:at + k, 1].tolist(), out_f[at:at + k, 2].tolist(),
-                        out_id[at:at + k].tolist(), strict=True))
-        best = None
-        for row in rows:
-            if row[1] < (best[1] if best is not None else 1e6):
-                best = row
-        f._seen = (members, pose_list, rows, None if best is None else (best[1], best[3]))
-        at += k
+        f._seen = (members, poses, out, i * m, k, (near[0], near[1]) if near[2] else None)
 
 
 @njit(cache=True)
@@ -342,67 +347,97 @@ def _bisect_right(keys, order, x):
 
 
 @njit(cache=True)
+def _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root, index,
+             ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
+             dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+             model_root, visible, count, nearest, out_c, out_f, out_id):
+    """Finder i's update (fin: gx, gy, ga, body x, y, z, a, range_max, range_max_id, fov;
+    ints: key, root, ignore_zloc): its readings written to out from i * len(poses) on
+    (candidate, range, bearing, his heading relative to the finder's, id), count[i] of
+    them, and nearest[i] the range and heading of the first of the least range below 1e6
+    (Fiducial.nearest), and 1 if there is one."""
+    m = poses.shape[0]
+    gx, gy, ma = fin[i, 0], fin[i, 1], fin[i, 2]
+    rmax = fin[i, 7]
+    # the candidates: Stage's box, by the sets' bounds (nearby, _above)
+    sx = _bisect_right(xs, order_x, gx - rmax)
+    ex = _bisect_right(xs, order_x, gx + rmax)
+    sy = _bisect_right(ys, order_y, gy - rmax)
+    ey = _bisect_right(ys, order_y, gy + rmax)
+    in_x = np.zeros(m, np.bool_)
+    for k in range(sx, ex):
+        in_x[order_x[k]] = True
+    picked = np.empty(m, np.int64)
+    n = 0
+    for k in range(sy, ey):
+        c = order_y[k]
+        if in_x[c]:
+            in_x[c] = False         # a model is in a set once
+            picked[n] = c
+            n += 1
+    cands = picked[:n][np.argsort(ranks[picked[:n]], kind='mergesort')]
+    at = i * m
+    for c in cands:
+        if ints[i, 0] != key[c]:
+            continue
+        dx = poses[c, 0] - gx
+        dy = poses[c, 1] - gy
+        rng = math.hypot(dy, dx)
+        if rng >= rmax:
+            continue
+        dtheta = normalize(math.atan2(dy, dx) - ma)
+        if abs(dtheta) > fin[i, 9] / 2.0:
+            continue
+        if root[c] == ints[i, 1]:
+            continue
+        ox, oy, oz, oa = pose_add_kernel(fin[i, 3], fin[i, 4], fin[i, 5], fin[i, 6], 0.0,
+                                         0.0, 0.0, dtheta)
+        _, hit = trace(ox, oy, oz, oa, rmax, ppm, classes[i], ints[i, 1], layer, rx0, ry0,
+                       nrx, nry, reg_count, reg_static, reg_dyn, st_first, dyn_head,
+                       ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+                       model_root, visible)
+        if ints[i, 2] != 0 and hit < 0:
+            hit = index[c]
+        if hit != index[c]:
+            continue
+        out_c[at] = c
+        out_f[at, 0] = rng
+        out_f[at, 1] = dtheta
+        out_f[at, 2] = normalize(poses[c, 3] - ma)
+        out_id[at] = ret[c] if rng < fin[i, 8] else 0
+        if rng < (nearest[i, 0] if nearest[i, 2] != 0.0 else 1e6):
+            nearest[i, 0] = rng
+            nearest[i, 1] = out_f[at, 2]
+            nearest[i, 2] = 1.0
+        at += 1
+    count[i] = at - i * m
+
+
+@njit(cache=True)
 def _see_all(fin, ints, classes, poses, order_x, order_y, ranks, key, root, index, ret,
              layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
              dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
-             model_root, visible, count, out_c, out_f, out_id):
-    """Each finder's update (fin: gx, gy, ga, body x, y, z, a, range_max, range_max_id, fov;
-    ints: key, root, ignore_zloc): its readings appended to out (candidate, range, bearing,
-    his heading relative to the finder's, id), count[i] of them."""
-    m = poses.shape[0]
+             model_root, visible, count, nearest, out_c, out_f, out_id):
+    """Every finder's update (_see_one), in this thread."""
     xs = poses[:, 0].copy()
     ys = poses[:, 1].copy()
-    in_x = np.zeros(m, np.bool_)
-    picked = np.empty(m, np.int64)
-    at = 0
     for i in range(fin.shape[0]):
-        gx, gy, ma = fin[i, 0], fin[i, 1], fin[i, 2]
-        rmax = fin[i, 7]
-        # the candidates: Stage's box, by the sets' bounds (nearby, _above)
-        sx = _bisect_right(xs, order_x, gx - rmax)
-        ex = _bisect_right(xs, order_x, gx + rmax)
-        sy = _bisect_right(ys, order_y, gy - rmax)
-        ey = _bisect_right(ys, order_y, gy + rmax)
-        in_x[:] = False
-        for k in range(sx, ex):
-            in_x[order_x[k]] = True
-        n = 0
-        for k in range(sy, ey):
-            c = order_y[k]
-            if in_x[c]:
-                in_x[c] = False         # a model is in a set once
-                picked[n] = c
-                n += 1
-        cands = picked[:n][np.argsort(ranks[picked[:n]], kind='mergesort')]
-        seen = 0
-        for c in cands:
-            if ints[i, 0] != key[c]:
-                continue
-            dx = poses[c, 0] - gx
-            dy = poses[c, 1] - gy
-            rng = math.hypot(dy, dx)
-            if rng >= rmax:
-                continue
-            dtheta = normalize(math.atan2(dy, dx) - ma)
-            if abs(dtheta) > fin[i, 9] / 2.0:
-                continue
-            if root[c] == ints[i, 1]:
-                continue
-            ox, oy, oz, oa = pose_add_kernel(fin[i, 3], fin[i, 4], fin[i, 5], fin[i, 6], 0.0,
-                                             0.0, 0.0, dtheta)
-            _, hit = trace(ox, oy, oz, oa, rmax, ppm, classes[i], ints[i, 1], layer, rx0, ry0,
-                           nrx, nry, reg_count, reg_static, reg_dyn, st_first, dyn_head,
-                           ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
-                           model_root, visible)
-            if ints[i, 2] != 0 and hit < 0:
-                hit = index[c]
-            if hit != index[c]:
-                continue
-            out_c[at] = c
-            out_f[at, 0] = rng
-            out_f[at, 1] = dtheta
-            out_f[at, 2] = normalize(poses[c, 3] - ma)
-            out_id[at] = ret[c] if rng < fin[i, 8] else 0
-            at += 1
-            seen += 1
-        count[i] = seen
+        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root,
+                 index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+                 st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                 blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)
+
+
+@njit(parallel=True, cache=True)
+def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, ranks, key, root, index,
+                      ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+                      st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                      blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id):
+    """_see_all, the finders shared among numba's threads (each writes its own rows)."""
+    xs = poses[:, 0].copy()
+    ys = poses[:, 1].copy()
+    for i in prange(fin.shape[0]):
+        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root,
+                 index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+                 st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                 blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)

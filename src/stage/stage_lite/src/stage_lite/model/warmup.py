@@ -71,8 +71,9 @@ def warm():
 
 
 def warm_sensors(world):
-    """The fiducial finder's and the blobfinder's rays (sight.py's kernel)."""
-    from .fiducial import FiducialIndex
+    """The fiducial finder's and the blobfinder's rays (sight.py's kernel), and the
+    finders' kernel for many finders at once (the threads')."""
+    from .fiducial import PARALLEL_CANDIDATES, FiducialIndex, update_all
     from .sight import Sight
     sight = Sight(world.models, world.robots, world.space)
     index = FiducialIndex(world.models)
@@ -80,6 +81,8 @@ def warm_sensors(world):
     for m in world.models:
         if m.kind == 'fiducial':
             m.update(index, sight, layer)
+            update_all([m] * (PARALLEL_CANDIDATES // len(index.models) + 1), index, sight,
+                       layer)
         elif m.kind == 'blobfinder':
             m.update(sight, layer)
 

@@ -37,9 +37,9 @@ from . import controllers, floor, grid, world_load
 from .blobfinder import Blobfinder
 from .camera import CameraRig
 from .casts import RangerCasts
-from .fiducial import Fiducial, FiducialIndex, update_all
+from .fiducial import Fiducial, FiducialIndex, python_poses, update_all
 from .glibc_random import Rand48, Random
-from .motion import Motion
+from .motion import Chains, Motion, elements
 from .noise import RangerNoise
 from .pose import pose_add, stage_normalize
 from .robot import body_row
@@ -109,12 +109,16 @@ class World(RangerCasts):
         self._kind = {k: np.array([isinstance(m, k) for m in self.models], np.bool_)
                       for k in (Blobfinder, Fiducial)}
         self._masks_version = None
+        self._model_chains = None        # every model's chain, made when first needed
+        self._root_of = np.array([m.root.index for m in self.models], np.int64)
         # controllers' callbacks of one batch run together (scheduler.py); False: each on
         # its own (the same run: the tests compare the two)
         self.batches = True
         self._prepare_rays()
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models)
+        if self.motion is not None:
+            self.fiducial_index.poses = self.global_poses
         self.sight = Sight(self.models, self.robots, self.space)
         # the cameras stageros publishes (camera.py); they draw before the step's moves
         self.cameras = CameraRig(self.models, self.robots, self._statics, self.ppm,
@@ -141,6 +145,26 @@ class World(RangerCasts):
             r.goal = (0.0, 0.0, 0.0, 0.0)
             r.control_mode = 'velocity'
             r.velocity = (0.0, 0.0, 0.0, 0.0)
+
+    def global_poses(self, models, body=False):
+        """Model.global_pose (body_pose with body) of each model, an (n, 4) array: carried
+        from the robots' poses by motion.Chains' kernel for the models of robot trees."""
+        at = np.fromiter((m.index for m in models), np.int64, len(models))
+        if (self._robot_slot[self._root_of[at]] < 0).any():     # a static model among them
+            return python_poses(models, body)
+        if self._model_chains is None:
+            n = len(self.models)
+            slots = [max(0, self._robot_slot[m.root.index]) for m in self.models]
+            self._model_chains = Chains(
+                [(r, elements(m)) for r, m in zip(slots, self.models, strict=True)]
+                + [(r, elements(m, [m.geom_pose])) for r, m in zip(slots, self.models,
+                                                                  strict=True)])
+            self._model_chains.count = n
+        out = np.empty((len(models), 4), np.float64)
+        if body:
+            at = at + self._model_chains.count
+        self._model_chains.poses(at, self.state.pose, out)
+        return out
 
     def robot_of(self, model):
         """The Robot of a position model (None for other models)."""
