@@ -12,6 +12,7 @@ writes its own robot's command, and the drand48() draws come in turn from the wo
 stream.
 """
 import math
+import weakref
 
 import numpy as np
 
@@ -55,15 +56,50 @@ def init(model, args):
     model.subscribe()
 
 
+class Flock:
+    """The flocking state of a world's flockers, one row each (whether it saw a robot at its
+    finder's last update, and that robot's relative heading), for the batch's kernel."""
+
+    def __init__(self):
+        self.sees = np.zeros(0, np.bool_)
+        self.heading = np.zeros(0, np.float64)
+
+    def add(self):
+        """A new row (False, 0.0); its number."""
+        self.sees = np.append(self.sees, False)
+        self.heading = np.append(self.heading, 0.0)
+        return len(self.sees) - 1
+
+
+_flocks = weakref.WeakKeyDictionary()     # a world (its controllers' handle) -> its Flock
+
+
 class Flocker:
-    """One robot's flocking state: the nearest robot last seen, and its relative heading."""
+    """One robot's flocking state: the nearest robot last seen, and its relative heading
+    (its row of the world's Flock)."""
 
     def __init__(self, position, ranger):
         self.position = position
         self.ranger = ranger
         self.headings = [s.pose.a for s in ranger.sensors[:SONARS]]
-        self.sees_one = False
-        self.heading_error = 0.0
+        self.flock = _flocks.setdefault(position.world, Flock())
+        self.row = self.flock.add()
+
+    @property
+    def sees_one(self):
+        return bool(self.flock.sees[self.row])
+
+    @sees_one.setter
+    def sees_one(self, value):
+        self.flock.sees[self.row] = value
+
+    @property
+    def heading_error(self):
+        return float(self.flock.heading[self.row])
+
+    @heading_error.setter
+    def heading_error(self, value):
+        self.flock.heading[self.row] = value
 
     def ranger_update(self, ranger, _):
         sensors = ranger.sensors
@@ -110,15 +146,18 @@ class _Batch:
             if flocker not in place:
                 place[flocker] = len(flockers)
                 flockers.append(flocker)
-            who[e] = place[flocker]
+            who[e] = flocker.row
             kind[e] = RANGER if callback.function.__func__ is Flocker.ranger_update else FINDER
             finders.append(callback.handle if kind[e] == FINDER else None)
-        n = len(flockers)
+        if any(f.flock is not flockers[0].flock for f in flockers):
+            return None
+        n = len(flockers[0].flock.sees)
         first = np.zeros((n, SONARS), np.int64)
         headings = np.zeros((n, SONARS))
         row = np.zeros(n, np.int64)
         arrays = None
-        for f, flocker in enumerate(flockers):
+        for flocker in flockers:
+            f = flocker.row
             places = [s.first_range_at() for s in flocker.ranger.sensors[:SONARS]]
             goal, mode, row[f] = flocker.position.command_rows()
             if None in places:
@@ -131,15 +170,13 @@ class _Batch:
             first[f] = [at for _, at in places]
             headings[f] = flocker.headings
         beams, goal, mode = arrays
-        return dict(flockers=flockers, finders=finders, kind=kind, who=who, first=first,
+        return dict(flock=flockers[0].flock, finders=finders, kind=kind, who=who, first=first,
                     headings=headings, row=row, beams=beams, goal=goal, mode=mode,
                     rand48=flockers[0].position.world.drand48_state())
 
     @staticmethod
     def run(plan, rows):
-        flockers = plan['flockers']
-        sees = np.array([f.sees_one for f in flockers], np.bool_)
-        heading = np.array([f.heading_error for f in flockers], np.float64)
+        flock = plan['flock']
         found = np.zeros(len(plan['kind']), np.bool_)
         near = np.zeros(len(plan['kind']), np.float64)
         finders = plan['finders']
@@ -149,11 +186,8 @@ class _Batch:
                 found[e] = True
                 near[e] = nearest[1]
         done = _flock_all(rows, plan['kind'], plan['who'], found, near, plan['beams'],
-                          plan['first'], plan['headings'], plan['row'], sees, heading,
-                          plan['goal'], plan['mode'], plan['rand48'])
-        for f, flocker in enumerate(flockers):
-            flocker.sees_one = bool(sees[f])
-            flocker.heading_error = float(heading[f])
+                          plan['first'], plan['headings'], plan['row'], flock.sees,
+                          flock.heading, plan['goal'], plan['mode'], plan['rand48'])
         return done
 
 

@@ -11,16 +11,24 @@ motion.py, else by Ranger.ray_origin itself.
 """
 import numpy as np
 
+from .jit import njit
 from .motion import Chains, elements
 from .ranger import Ranger
 
 
+@njit(cache=True)
 def _ranges_of(starts, ends):
     """The integers starts[0]..ends[0]-1, starts[1]..ends[1]-1, ... in one int64 array."""
-    counts = ends - starts
-    total = int(counts.sum())
-    base = np.repeat(starts - (np.cumsum(counts) - counts), counts)
-    return base + np.arange(total, dtype=np.int64)
+    total = 0
+    for i in range(starts.shape[0]):
+        total += ends[i] - starts[i]
+    out = np.empty(total, np.int64)
+    k = 0
+    for i in range(starts.shape[0]):
+        for v in range(starts[i], ends[i]):
+            out[k] = v
+            k += 1
+    return out
 
 
 class RangerCasts:
@@ -66,9 +74,12 @@ class RangerCasts:
         self._ranger_sensor_off = np.array(
             [self._sensor_ids[g][0] for g in rangers] + [len(self._sensors)], np.int64)
         self._all_sensors = np.arange(len(self._sensors), dtype=np.int64)
+        carried = [(r.index, g, s) for r in self.robots for g in r.ranger_models
+                   for s in g.sensors]
+        # a ranger's sensors share its body's frame (computed once per ranger and cast)
         self._origin_chains = Chains(
-            [(r.index, elements(g, [g.geom_pose, g.ray_local(s)]))
-             for r in self.robots for g in r.ranger_models for s in g.sensors])
+            [(r, elements(g, [g.geom_pose, g.ray_local(s)])) for r, g, s in carried],
+            [(g.index, len(elements(g)) + 1) for _, g, _ in carried])
         views = [self._views_of.get(g) for g in rangers]
         self._view_of_slot = views
         count = [v.samples if v is not None else 0 for v in views]

@@ -82,7 +82,7 @@ class FiducialReading:
     id: int            # his fiducial_return, or 0 at range_max_id and beyond
 
 
-def python_poses(models, body=False):
+def python_poses(models, body=False, at=None):
     """Model.global_pose (or body_pose) of each model, as an (n, 4) array."""
     return np.array([m.body_pose() if body else m.global_pose() for m in models],
                     np.float64).reshape(-1, 4)
@@ -98,9 +98,14 @@ class FiducialIndex:
 
     def __init__(self, models, rank=None):
         self.rank = rank if rank is not None else (lambda m: m.index)
-        # poses(models, body=False): their global poses (or their bodies' frames) now, an
-        # (n, 4) array; the World gives its kernels' (World.global_poses)
+        # poses(models, body=False, at=None): their global poses (or their bodies' frames)
+        # now, an (n, 4) array (at: their indices, or None); the World gives its kernels'
+        # (World.global_poses)
         self.poses = python_poses
+        self._constants = {}
+        self._finder_row = {}
+        self.finder_table = dict(ints=np.zeros((0, 4), np.int64),
+                                 floats=np.zeros((0, 3), np.float64))
         self.models = []      # Stage's vector: insertion order (erase, then push_back)
         for m in models:
             self.set_return(m, m.fiducial_return)
@@ -127,13 +132,44 @@ class FiducialIndex:
         """World::Update's first work: the sets sorted by global x and by global y (ties by
         address: rank) rebuilt from the fiducial-bearing models' poses now."""
         members = self._members = list(self.models)
-        poses = self.poses(members)
+        poses = self.poses(members, at=self.constants(members)[1])
         self._ranks = np.array([self.rank(m) for m in members], np.float64)
         # stable sorts: equal (x, rank) keep the models' order, as sorted() does
         self._order_x = np.lexsort((self._ranks, poses[:, 0]))
         self._order_y = np.lexsort((self._ranks, poses[:, 1]))
         self._by_x = [members[k] for k in self._order_x.tolist()]
         self._by_y = [members[k] for k in self._order_y.tolist()]
+
+    def constants(self, models):
+        """(root indices, model indices) of the models, int64 arrays, kept for the same
+        list of models (the sets' members from one begin_step to the next)."""
+        key = tuple(models)
+        got = self._constants.get(key)
+        if got is None:
+            if len(self._constants) > 8:
+                self._constants.clear()
+            got = self._constants[key] = (
+                np.array([h.root.index for h in models], np.int64),
+                np.array([h.index for h in models], np.int64))
+        return got
+
+    def finder_rows(self, finders, sight):
+        """Each finder's row in finder_table ('ints': root index, ignore_zloc, the tree
+        sight's static tables know it by, model index; 'floats': range_max, range_max_id,
+        fov: what a finder does not change once loaded), added the first time it is seen."""
+        row = self._finder_row
+        new = [f for f in finders if f not in row]
+        if new:
+            table = self.finder_table
+            for f in new:
+                row[f] = len(row)
+            root = [f.root.index for f in new]
+            table['ints'] = np.concatenate((table['ints'], np.array(
+                [(r, int(f.ignore_zloc), sight.tree_key(r), f.index)
+                 for f, r in zip(new, root, strict=True)], np.int64)))
+            table['floats'] = np.concatenate((table['floats'], np.array(
+                [(f.range_max, f.range_max_id, f.fov) for f in new], np.float64)))
+        return np.fromiter((row[f] for f in finders), np.int64, len(finders))
 
     def nearby(self, x, y, rng):
         """The candidates of a finder at global (x, y) with range rng, in Stage's order
@@ -292,40 +328,49 @@ def update_all(finders, index, sight, layer):
         for f in finders:
             f.fiducials = []
         return
-    poses = index.poses(members)
-    cand = np.array([(m.fiducial_key, m.root.index, m.index, m.fiducial_return)
-                     for m in members], np.int64)
-    n = len(finders)
+    n, m = len(finders), len(members)
+    member_root, member_index = index.constants(members)
+    poses = index.poses(members, at=member_index)
+    member_key = np.fromiter((h.fiducial_key for h in members), np.int64, m)
+    member_return = np.fromiter((h.fiducial_return for h in members), np.int64, m)
+    rows = index.finder_rows(finders, sight)
+    table = index.finder_table
     fin = np.empty((n, 10), np.float64)
-    fin[:, 0:3] = index.poses(finders)[:, (0, 1, 3)]
-    fin[:, 3:7] = index.poses(finders, body=True)
-    fin[:, 7:10] = [(f.range_max, f.range_max_id, f.fov) for f in finders]
-    ints = np.array([(f.fiducial_key, f.root.index, int(f.ignore_zloc)) for f in finders],
-                    np.int64)
-    tables = []
+    at = table['ints'][rows, 3]
+    fin[:, 0:3] = index.poses(finders, at=at)[:, (0, 1, 3)]
+    fin[:, 3:7] = index.poses(finders, body=True, at=at)
+    fin[:, 7:10] = table['floats'][rows]
+    ints = np.empty((n, 3), np.int64)
+    ints[:, 0] = np.fromiter((f.fiducial_key for f in finders), np.int64, n)
+    ints[:, 1:3] = table['ints'][rows, 0:2]
+    # the static tables their rays read: one per (height, tree holding static bodies or not)
+    z, tree = fin[:, 5], table['ints'][rows, 2]
     classes = np.zeros(n, np.int64)
-    for i, f in enumerate(finders):
-        table = sight.static_first(float(fin[i, 5]), f.root.index)
-        for k, t in enumerate(tables):
-            if t is table:
-                classes[i] = k
-                break
-        else:
-            classes[i] = len(tables)
-            tables.append(table)
-    st = tables[0] if len(tables) == 1 else np.concatenate(tables)
+    if (z == z[0]).all() and (tree == tree[0]).all():
+        st = sight.static_first(float(z[0]), int(tree[0]))
+    else:
+        tables = []
+        for i in range(n):
+            got = sight.static_first(float(z[i]), int(tree[i]))
+            for k, t in enumerate(tables):
+                if t is got:
+                    classes[i] = k
+                    break
+            else:
+                classes[i] = len(tables)
+                tables.append(got)
+        st = np.concatenate(tables)
     sp = sight.space
     count = np.zeros(n, np.int64)
     nearest = np.zeros((n, 3), np.float64)      # range, heading, whether any
-    cap = n * len(members)
-    out = (np.empty(cap, np.int64), np.empty((cap, 3), np.float64), np.empty(cap, np.int64))
-    see = _see_all_parallel if n * len(members) >= PARALLEL_CANDIDATES else _see_all
-    see(fin, ints, classes, poses, index._order_x, index._order_y, index._ranks,
-             cand[:, 0], cand[:, 1], cand[:, 2], cand[:, 3], layer, sp.ppm, sp.rx0, sp.ry0,
-             sp.nrx, sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st, sp.dyn_head,
-             sp.ent_block, sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin, sp.blk_zmax,
-             sight.model_root, sight.visible, count, nearest, *out)
-    m = len(members)
+    out = (np.empty(n * m, np.int64), np.empty((n * m, 3), np.float64),
+           np.empty(n * m, np.int64))
+    see = _see_all_parallel if n * m >= PARALLEL_CANDIDATES else _see_all
+    see(fin, ints, classes, poses, index._order_x, index._order_y, index._ranks, member_key,
+        member_root, member_index, member_return, layer, sp.ppm, sp.rx0, sp.ry0, sp.nrx,
+        sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st, sp.dyn_head, sp.ent_block,
+        sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin, sp.blk_zmax, sight.model_root,
+        sight.visible, count, nearest, *out)
     for i, (f, k, near) in enumerate(zip(finders, count.tolist(), nearest.tolist(),
                                          strict=True)):
         f._fiducials = []

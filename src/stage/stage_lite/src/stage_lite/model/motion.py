@@ -57,12 +57,25 @@ def chain(pose, i, el_pose, el_stack, el_zadd, start, end):
 
 
 @njit(cache=True)
-def chain_poses(targets, t_robot, t_off, el_pose, el_stack, el_zadd, pose, out):
-    """out[i] = the pose of target targets[i] (its robot's pose through its elements)."""
+def chain_poses(targets, t_robot, t_off, t_shared, t_prefix, el_pose, el_stack, el_zadd, pose,
+                out):
+    """out[i] = the pose of target targets[i] (its robot's pose through its elements). Targets
+    that share their first t_prefix elements (the same t_shared >= 0, one after the other)
+    compute them once: the same sums, the same numbers."""
+    last = -1
+    px = py = pz = pa = 0.0
     for i in range(targets.shape[0]):
         t = targets[i]
-        x, y, z, a = chain(pose, t_robot[t], el_pose, el_stack, el_zadd, t_off[t],
-                           t_off[t + 1])
+        start = t_off[t] + t_prefix[t]
+        if t_shared[t] < 0 or t_shared[t] != last:
+            px, py, pz, pa = chain(pose, t_robot[t], el_pose, el_stack, el_zadd, t_off[t], start)
+            last = t_shared[t]
+        x, y, z, a = px, py, pz, pa
+        for k in range(start, t_off[t + 1]):
+            x, y, z, a = pose_add(x, y, z, a, el_pose[k, 0], el_pose[k, 1], el_pose[k, 2],
+                                  el_pose[k, 3])
+            if el_stack[k]:
+                z += el_zadd[k]
         out[i, 0] = x
         out[i, 1] = y
         out[i, 2] = z
@@ -251,10 +264,14 @@ def elements(model, tails=()):
 class Chains:
     """Targets (a robot slot and its chain elements each) as the kernels' tables."""
 
-    def __init__(self, targets):
-        """targets: [(robot slot, elements())]."""
+    def __init__(self, targets, shared=None):
+        """targets: [(robot slot, elements())]; shared: per target, None or (a number, how
+        many of its first elements it shares with the other targets of that number)."""
         counts = [len(els) for _, els in targets]
         flat = [e for _, els in targets for e in els]
+        shared = shared or [None] * len(targets)
+        self.shared = np.array([-1 if s is None else s[0] for s in shared], np.int64)
+        self.prefix = np.array([0 if s is None else s[1] for s in shared], np.int64)
         self.robot = np.array([r for r, _ in targets], np.int64)
         self.off = np.concatenate(([0], np.cumsum(counts))).astype(np.int64)
         self.pose = np.array([e[0] for e in flat], np.float64).reshape(-1, 4)
@@ -263,8 +280,8 @@ class Chains:
 
     def poses(self, targets, robot_pose, out):
         """out[i] := the world pose of target targets[i] at the robots' poses now."""
-        chain_poses(targets, self.robot, self.off, self.pose, self.stack, self.zadd,
-                    robot_pose, out)
+        chain_poses(targets, self.robot, self.off, self.shared, self.prefix, self.pose,
+                    self.stack, self.zadd, robot_pose, out)
 
 
 class Motion:
@@ -301,19 +318,24 @@ class Motion:
                                 np.float64).reshape(-1, 4, 2)
         self.gps = np.array([m.localization == 'gps' for m in ms], np.bool_)
         self.error = np.array([m.integration_error for m in ms], np.float64).reshape(-1, 4)
+        # the robots under position control, their velocity from Robot.commanded_velocity
+        self.given = np.zeros(len(robots), np.bool_)
+        self.given_velocity = np.zeros((len(robots), 4))
 
     def update(self, robots, state, due, subscribed, dt):
         """ModelPosition::Update of the robot slots `due` (int64 array)."""
-        given = np.zeros(len(robots), np.bool_)
-        given_velocity = np.zeros((len(robots), 4))
-        for i in np.flatnonzero(state.mode[due] > ACCELERATION).tolist():
+        given = self.given
+        positioned = np.flatnonzero(state.mode[due] > ACCELERATION).tolist()
+        for i in positioned:
             slot = int(due[i])
             if subscribed[slot]:
                 given[slot] = True
-                given_velocity[slot] = robots[slot].commanded_velocity(dt)
+                self.given_velocity[slot] = robots[slot].commanded_velocity(dt)
         update_positions(due, subscribed, state.goal, state.mode, state.velocity, state.est,
                          state.pose, self.drive, self.wheelbase, self.vbounds, self.abounds,
-                         self.gps, self.error, given, given_velocity, dt)
+                         self.gps, self.error, given, self.given_velocity, dt)
+        if positioned:
+            given[:] = False
 
     def move(self, state, subscribed, dt, layer):
         """Every subscribed robot's move, in order, and every robot's twist."""

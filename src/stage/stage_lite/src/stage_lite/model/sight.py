@@ -103,12 +103,17 @@ class Sight:
         self._static_roots = set(self.model_root[self._model].tolist())
         self._any_z = (np.zeros(0), np.zeros(0))
 
+    def tree_key(self, finder_root):
+        """The tree static_first's tables know a finder's by: its own if it holds static
+        bodies, else -1 (one table for all those)."""
+        return finder_root if finder_root in self._static_roots else -1
+
     def static_first(self, z, finder_root):
         """(1, pages, cells) int32: per static cell, the first static model (load order:
         Stage's drawing order) a ray of height z (NO_Z: any height) from finder_root's tree
         stops at, or -1. Built once per z and tree (one for all the trees that hold no
         static drawing)."""
-        key = (z, finder_root if finder_root in self._static_roots else -1)
+        key = (z, self.tree_key(finder_root))
         table = self._tables.get(key)
         if table is None:
             ok = self.model_root[self._model] != finder_root

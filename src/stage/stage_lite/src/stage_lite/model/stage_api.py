@@ -12,7 +12,10 @@ import math
 from dataclasses import dataclass, replace
 
 from .pose import pose_add, stage_normalize
+from .robot_state import MODE_CODE
 from .scheduler import CB_FLAGDECR, CB_FLAGINCR
+
+AXES = {'x': 0, 'y': 1, 'z': 2, 'a': 3}     # a command's parts: their places in a goal
 
 
 @dataclass(frozen=True)
@@ -243,15 +246,14 @@ class PositionApi(ModelApi):
         self._command('position', x=x, y=y, z=0.0, a=a)
 
     def _command(self, mode, **parts):
-        r = self._robot
-        goal = dict(zip('xyza', r.goal, strict=True))
         for axis, value in parts.items():
             if not math.isfinite(value):
                 raise ValueError('%s: %s %s must be finite, got %r'
                                  % (self.token, mode, axis, value))
-            goal[axis] = float(value)
-        r.goal = (goal['x'], goal['y'], goal['z'], goal['a'])
-        r.control_mode = mode
+        goal, modes, row = self._robot.command_rows()
+        for axis, value in parts.items():
+            goal[row, AXES[axis]] = float(value)
+        modes[row] = MODE_CODE[mode]
 
     def get_velocity(self):
         return Pose(*self._robot.velocity)

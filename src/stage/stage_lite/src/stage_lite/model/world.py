@@ -108,6 +108,8 @@ class World(RangerCasts):
             self._robot_slot[r.model.index] = r.index
         self._kind = {k: np.array([isinstance(m, k) for m in self.models], np.bool_)
                       for k in (Blobfinder, Fiducial)}
+        self._any_finder = bool(self._kind[Fiducial].any())
+        self._any_blobfinder = bool(self._kind[Blobfinder].any())
         self._masks_version = None
         self._model_chains = None        # every model's chain, made when first needed
         self._root_of = np.array([m.root.index for m in self.models], np.int64)
@@ -146,10 +148,12 @@ class World(RangerCasts):
             r.control_mode = 'velocity'
             r.velocity = (0.0, 0.0, 0.0, 0.0)
 
-    def global_poses(self, models, body=False):
+    def global_poses(self, models, body=False, at=None):
         """Model.global_pose (body_pose with body) of each model, an (n, 4) array: carried
-        from the robots' poses by motion.Chains' kernel for the models of robot trees."""
-        at = np.fromiter((m.index for m in models), np.int64, len(models))
+        from the robots' poses by motion.Chains' kernel for the models of robot trees (at:
+        their indices, if the caller has them)."""
+        if at is None:
+            at = np.fromiter((m.index for m in models), np.int64, len(models))
         if (self._robot_slot[self._root_of[at]] < 0).any():     # a static model among them
             return python_poses(models, body)
         if self._model_chains is None:
@@ -214,12 +218,14 @@ class World(RangerCasts):
         models = self.models
         sensing = (self.updates + 1) % 2
         subscribed, with_callbacks = self._masks()
-        self.fiducial_index.begin_step()
+        if self._any_finder:     # the finders' sets (with no finder, nobody reads them)
+            self.fiducial_index.begin_step()
         updated = [scheduler.due_indices(0, now)]
         slots = self._robot_slot[updated[0]]
         self.motion.update(self.robots, self.state, slots[slots >= 0], subscribed, dt)
-        for i in updated[0][self._kind[Blobfinder][updated[0]]].tolist():
-            models[i].update(self.sight, sensing)     # beside the position updates: apart
+        if self._any_blobfinder:
+            for i in updated[0][self._kind[Blobfinder][updated[0]]].tolist():
+                models[i].update(self.sight, sensing)     # beside the position updates
         self.cameras.update(now)
         self.motion.move(self.state, subscribed, dt, self.updates % 2)
         for queue in range(1, self.threads + 1):
@@ -229,9 +235,11 @@ class World(RangerCasts):
         rangers = rangers[rangers >= 0]
         if rangers.size:
             self.cast_ranger_slots(rangers, sensing)
-        finders = [models[i] for ids in updated[1:] for i in ids[self._kind[Fiducial][ids]]]
-        if finders:
-            update_all(finders, self.fiducial_index, self.sight, sensing)
+        if self._any_finder:
+            finders = [models[i] for ids in updated[1:]
+                       for i in ids[self._kind[Fiducial][ids]].tolist()]
+            if finders:
+                update_all(finders, self.fiducial_index, self.sight, sensing)
         self._call_updates(every, with_callbacks)
         scheduler.call_world(self)
         if rangers.size:
