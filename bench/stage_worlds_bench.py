@@ -1,13 +1,14 @@
 """Stage's own program on Stage's own worlds: stage_lite's `stage -g` beside the real Stage's.
 
     ./ws bench stage_worlds_bench [--peer STAGE] [--worlds DIR] [--runs N] [--only NAME ..]
-                                  [--ours COMMAND]
+                                  [--ours COMMAND] [--before COMMAND]
 
 STAGE is the real Stage 4.3.0's program (default /work/scratch/peer/install/bin/stage, its
 libstage found through LD_LIBRARY_PATH=<its prefix>/lib), DIR a copy of Stage's `worlds/`
 folder (default /work/scratch/worlds, with `benchmark/`); without either the bench says what
 is missing and skips (exit 0). stage_lite's is `stage` from the sourced workspace (or
---ours, a command line, e.g. `python3 -m stage_lite.node.stage_program` on another tree).
+--ours, a command line); --before adds another stage_lite to the rotation (a command line
+running an earlier tree, say), to compare before and after in one run.
 
 The worlds (WORLDS): simple (two wanderers), autolab_run (wanderers on Stage's autolab
 plan), pioneer_flocking_run (100 pioneers, sonars and fiducial finders), benchmark/cave
@@ -21,8 +22,8 @@ left out:
 * cores = (user + sys)(T2) - (user + sys)(T1) over the same wall difference;
 * peak RSS (MB) of the T2 run.
 RUNS times (default 3), each simulator in turn, one at a time; medians of the runs. Prints
-a markdown table with the ratio of the real-time factors (stage_lite / Stage: above 1,
-stage_lite is faster).
+a markdown table, a row per world and simulator, with the ratio of each real-time factor to
+the real Stage's (above 1: faster than Stage).
 """
 import argparse
 import os
@@ -112,6 +113,7 @@ def main(argv=None):
     ap.add_argument('--only', nargs='+', choices=[w[0] for w in WORLDS],
                     help='these worlds only')
     ap.add_argument('--ours', default='stage', help="stage_lite's program (a command line)")
+    ap.add_argument('--before', help='an earlier stage_lite, measured beside (a command line)')
     args = ap.parse_args(argv)
     why = missing(args.peer, args.worlds)
     if why:
@@ -119,8 +121,10 @@ def main(argv=None):
         return
     peer_env = dict(os.environ, LD_LIBRARY_PATH=os.path.join(
         os.path.dirname(os.path.dirname(os.path.abspath(args.peer))), 'lib'))
-    sides = (('stage_lite', shlex.split(args.ours), dict(os.environ)),
-             ('Stage', [args.peer], peer_env))
+    sides = [('Stage', [args.peer], peer_env)]
+    if args.before:
+        sides.append(('stage_lite before', shlex.split(args.before), dict(os.environ)))
+    sides.append(('stage_lite', shlex.split(args.ours), dict(os.environ)))
     rows = []
     with tempfile.TemporaryDirectory(prefix='stage_worlds_bench_') as tmp:
         mirror(args.worlds, tmp)
@@ -138,14 +142,16 @@ def main(argv=None):
                                             for i in range(3))
                                 for side, got in runs.items()}))
     print()
-    print('| world | wall ms per simulated s: stage_lite / Stage | real-time factor: '
-          'stage_lite / Stage | stage_lite / Stage | cores | peak RSS MB |')
-    print('|---|---|---|---|---|---|')
+    print('| world | simulator | wall ms per simulated s | real-time factor | vs Stage | cores |'
+          ' peak RSS MB |')
+    print('|---|---|---|---|---|---|---|')
     for name, by in rows:
-        (ours, ours_cores, ours_rss), (real, real_cores, real_rss) = by['stage_lite'], by['Stage']
-        print('| %s | %.1f / %.1f | %.2f / %.2f | **%.2f x** | %.2f / %.2f | %.0f / %.0f |' % (
-            name, ours * 1e3, real * 1e3, 1 / ours, 1 / real, real / ours, ours_cores,
-            real_cores, ours_rss, real_rss))
+        real = by['Stage'][0]
+        for side, _, _ in sides:
+            wall, cores, rss = by[side]
+            print('| %s | %s | %.1f | %.2f | %s | %.2f | %.0f |' % (
+                name, side, wall * 1e3, 1 / wall,
+                '' if side == 'Stage' else '**%.2f x**' % (real / wall), cores, rss))
 
 
 if __name__ == '__main__':

@@ -132,8 +132,8 @@ class FiducialIndex:
         """World::Update's first work: the sets sorted by global x and by global y (ties by
         address: rank) rebuilt from the fiducial-bearing models' poses now."""
         members = self._members = list(self.models)
-        poses = self.poses(members, at=self.constants(members)[1])
-        self._ranks = np.array([self.rank(m) for m in members], np.float64)
+        _, at, self._ranks = self.constants(members)
+        poses = self.poses(members, at=at)
         # stable sorts: equal (x, rank) keep the models' order, as sorted() does
         self._order_x = np.lexsort((self._ranks, poses[:, 0]))
         self._order_y = np.lexsort((self._ranks, poses[:, 1]))
@@ -141,16 +141,17 @@ class FiducialIndex:
         self._by_y = [members[k] for k in self._order_y.tolist()]
 
     def constants(self, models):
-        """(root indices, model indices) of the models, int64 arrays, kept for the same
+        """(root indices, model indices, ranks) of the models, arrays, kept for the same
         list of models (the sets' members from one begin_step to the next)."""
-        key = tuple(models)
+        key = (self.rank, tuple(models))
         got = self._constants.get(key)
         if got is None:
             if len(self._constants) > 8:
                 self._constants.clear()
             got = self._constants[key] = (
                 np.array([h.root.index for h in models], np.int64),
-                np.array([h.index for h in models], np.int64))
+                np.array([h.index for h in models], np.int64),
+                np.array([self.rank(h) for h in models], np.float64))
         return got
 
     def finder_rows(self, finders, sight):
@@ -217,8 +218,7 @@ class Fiducial(models.Fiducial):
         self.fov = DEFAULT_FOV
         self.ignore_zloc = False
         self._fiducials = []
-        # (members, their poses, the kernel's output, where and how many of it are this
-        # finder's readings, nearest()) while the readings are not made
+        # (update_all's _Seen, this finder's place in it) while the readings are not made
         self._seen = None
 
     def load(self, wf, rng):
@@ -256,7 +256,9 @@ class Fiducial(models.Fiducial):
         """What the last update saw (FiducialReadings, Stage's order); made from the
         kernel's numbers when first asked."""
         if self._seen is not None:
-            members, poses, (out_c, out_f, out_id), at, count, _ = self._seen
+            step, i = self._seen
+            members, poses, (out_c, out_f, out_id) = step.members, step.poses, step.out
+            at, count = i * len(members), int(step.count[i])
             self._seen = None
             end = at + count
             self._fiducials = [
@@ -275,7 +277,9 @@ class Fiducial(models.Fiducial):
         """(range, his heading relative to the finder's) of the first reading of the least
         range, or None (what pioneer_flocking takes of the last update)."""
         if self._seen is not None:
-            return self._seen[5]
+            step, i = self._seen
+            near = step.nearest[i]
+            return (float(near[0]), float(near[1])) if near[2] else None
         best = None
         for seen in self._fiducials:
             if seen.range < (best.range if best is not None else 1e6):
@@ -329,7 +333,7 @@ def update_all(finders, index, sight, layer):
             f.fiducials = []
         return
     n, m = len(finders), len(members)
-    member_root, member_index = index.constants(members)
+    member_root, member_index, _ = index.constants(members)
     poses = index.poses(members, at=member_index)
     member_key = np.fromiter((h.fiducial_key for h in members), np.int64, m)
     member_return = np.fromiter((h.fiducial_return for h in members), np.int64, m)
@@ -371,10 +375,24 @@ def update_all(finders, index, sight, layer):
         sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st, sp.dyn_head, sp.ent_block,
         sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin, sp.blk_zmax, sight.model_root,
         sight.visible, count, nearest, *out)
-    for i, (f, k, near) in enumerate(zip(finders, count.tolist(), nearest.tolist(),
-                                         strict=True)):
+    step = _Seen(members, poses, out, count, nearest)
+    for i, f in enumerate(finders):
         f._fiducials = []
-        f._seen = (members, poses, out, i * m, k, (near[0], near[1]) if near[2] else None)
+        f._seen = (step, i)
+
+
+class _Seen:
+    """What update_all's kernel found: the members, their poses, the readings' numbers (each
+    finder's from i * len(members) on, count[i] of them), each finder's nearest."""
+
+    __slots__ = ('members', 'poses', 'out', 'count', 'nearest')
+
+    def __init__(self, members, poses, out, count, nearest):
+        self.members = members
+        self.poses = poses
+        self.out = out
+        self.count = count
+        self.nearest = nearest
 
 
 @njit(cache=True)
@@ -478,10 +496,14 @@ def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, ranks, key, r
                       ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
                       st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
                       blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id):
-    """_see_all, the finders shared among numba's threads (each writes its own rows)."""
+    """_see_all, the finders shared among numba's threads (each writes its own rows),
+    dealt out in turn (neighbouring finders, whose work is alike, to different threads)."""
     xs = poses[:, 0].copy()
     ys = poses[:, 1].copy()
-    for i in prange(fin.shape[0]):
+    n = fin.shape[0]
+    half = (n + 1) // 2
+    for j in prange(n):
+        i = 2 * j if j < half else 2 * (j - half) + 1
         _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root,
                  index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
                  st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
