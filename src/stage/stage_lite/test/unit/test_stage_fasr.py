@@ -46,11 +46,10 @@ def named(w, name):
 
 def forager_of(w, model):
     """The controller's Forager behind the robot's update callback."""
-    for function, _, _ in w.scheduler.callbacks[(model, 'update')]:
-        for cell in function.__closure__:
-            found = getattr(cell.cell_contents, '__self__', None)
-            if isinstance(found, fasr.Forager):
-                return found
+    for callback, _, _ in w.scheduler.callbacks[(model, 'update')]:
+        found = getattr(callback.function, '__self__', None)   # stage_api.ApiCallback
+        if isinstance(found, fasr.Forager):
+            return found
     raise LookupError(model.token)
 
 

@@ -5,8 +5,20 @@ robot the fiducial finder saw at its last update (gain 0.3); blocked and turning
 turn by a drand48() draw instead (Stage seeds drand48 from the clock: its flocks differ
 from run to run; here the world's seed fixes them). Before the finder's first update Stage
 reads an uninitialised pointer; here that counts as no robot seen.
+
+The robots' callbacks that come one after the other run in one kernel (BATCH, scheduler.py's
+batches), in the same order: each reads its own sonars, finder and flocking state and
+writes its own robot's command, and the drand48() draws come in turn from the world's
+stream.
 """
 import math
+import weakref
+
+import numpy as np
+
+from stage_lite.model.glibc_random import drand48_next
+from stage_lite.model.jit import njit
+from stage_lite.model.robot_state import MODE_CODE
 
 SPEED = 0.4               # m/s
 EXPAND_GAIN = 0.3         # turn per rad of the sonars' resultant
@@ -18,6 +30,10 @@ SONARS = 8                # the first sonars summed
 CLEAR_AHEAD = ((3, SAFE_DISTANCE), (4, SAFE_DISTANCE), (5, SAFE_DISTANCE),
                (6, SAFE_DISTANCE / 2.0), (2, SAFE_DISTANCE), (1, SAFE_DISTANCE / 2.0))
 SLOW_TURN = 0.1           # rad/s: below it a blocked robot turns by drand48() instead
+CLEAR_K = np.array([k for k, _ in CLEAR_AHEAD], np.int64)
+CLEAR_LEAST = np.array([least for _, least in CLEAR_AHEAD], np.float64)
+VELOCITY = MODE_CODE['velocity']
+RANGER, FINDER = 0, 1     # the batch's two kinds of callback
 
 
 def init(model, args):
@@ -40,14 +56,50 @@ def init(model, args):
     model.subscribe()
 
 
+class Flock:
+    """The flocking state of a world's flockers, one row each (whether it saw a robot at its
+    finder's last update, and that robot's relative heading), for the batch's kernel."""
+
+    def __init__(self):
+        self.sees = np.zeros(0, np.bool_)
+        self.heading = np.zeros(0, np.float64)
+
+    def add(self):
+        """A new row (False, 0.0); its number."""
+        self.sees = np.append(self.sees, False)
+        self.heading = np.append(self.heading, 0.0)
+        return len(self.sees) - 1
+
+
+_flocks = weakref.WeakKeyDictionary()     # a world (its controllers' handle) -> its Flock
+
+
 class Flocker:
-    """One robot's flocking state: the nearest robot last seen, and its relative heading."""
+    """One robot's flocking state: the nearest robot last seen, and its relative heading
+    (its row of the world's Flock)."""
 
     def __init__(self, position, ranger):
         self.position = position
+        self.ranger = ranger
         self.headings = [s.pose.a for s in ranger.sensors[:SONARS]]
-        self.sees_one = False
-        self.heading_error = 0.0
+        self.flock = _flocks.setdefault(position.world, Flock())
+        self.row = self.flock.add()
+
+    @property
+    def sees_one(self):
+        return bool(self.flock.sees[self.row])
+
+    @sees_one.setter
+    def sees_one(self, value):
+        self.flock.sees[self.row] = value
+
+    @property
+    def heading_error(self):
+        return float(self.flock.heading[self.row])
+
+    @heading_error.setter
+    def heading_error(self, value):
+        self.flock.heading[self.row] = value
 
     def ranger_update(self, ranger, _):
         sensors = ranger.sensors
@@ -71,11 +123,121 @@ class Flocker:
         return False
 
     def fiducial_update(self, finder, _):
-        nearest = None
-        for seen in finder.fiducials:
-            if seen.range < (nearest.range if nearest is not None else 1e6):
-                nearest = seen
+        nearest = finder.nearest()         # the first of the least range it saw
         self.sees_one = nearest is not None
         if nearest is not None:          # otherwise the last heading seen stays
-            self.heading_error = nearest.geom[3]
+            self.heading_error = nearest[1]
         return False
+
+
+class _Batch:
+    """Flockers' callbacks in turn, in one kernel (scheduler.py's batch protocol)."""
+
+    @staticmethod
+    def prepare(entries):
+        """The callbacks' tables, or None when a sensor or a robot is not the world's."""
+        flockers = []
+        place = {}
+        kind = np.zeros(len(entries), np.int64)
+        who = np.zeros(len(entries), np.int64)
+        finders = []
+        for e, (callback, _, _) in enumerate(entries):
+            flocker = callback.function.__self__
+            if flocker not in place:
+                place[flocker] = len(flockers)
+                flockers.append(flocker)
+            who[e] = flocker.row
+            kind[e] = RANGER if callback.function.__func__ is Flocker.ranger_update else FINDER
+            finders.append(callback.handle if kind[e] == FINDER else None)
+        if any(f.flock is not flockers[0].flock for f in flockers):
+            return None
+        n = len(flockers[0].flock.sees)
+        first = np.zeros((n, SONARS), np.int64)
+        headings = np.zeros((n, SONARS))
+        row = np.zeros(n, np.int64)
+        arrays = None
+        for flocker in flockers:
+            f = flocker.row
+            places = [s.first_range_at() for s in flocker.ranger.sensors[:SONARS]]
+            goal, mode, row[f] = flocker.position.command_rows()
+            if None in places:
+                return None
+            here = (places[0][0], goal, mode)
+            arrays = arrays or here
+            if any(p[0] is not arrays[0] for p in places) or here[1] is not arrays[1] \
+                    or here[2] is not arrays[2]:
+                return None
+            first[f] = [at for _, at in places]
+            headings[f] = flocker.headings
+        beams, goal, mode = arrays
+        return dict(flock=flockers[0].flock, finders=finders, kind=kind, who=who, first=first,
+                    headings=headings, row=row, beams=beams, goal=goal, mode=mode,
+                    rand48=flockers[0].position.world.drand48_state())
+
+    @staticmethod
+    def run(plan, rows):
+        flock = plan['flock']
+        found = np.zeros(len(plan['kind']), np.bool_)
+        near = np.zeros(len(plan['kind']), np.float64)
+        finders = plan['finders']
+        for e in rows[plan['kind'][rows] == FINDER].tolist():
+            nearest = finders[e].nearest()
+            if nearest is not None:
+                found[e] = True
+                near[e] = nearest[1]
+        done = _flock_all(rows, plan['kind'], plan['who'], found, near, plan['beams'],
+                          plan['first'], plan['headings'], plan['row'], flock.sees,
+                          flock.heading, plan['goal'], plan['mode'], plan['rand48'])
+        return done
+
+
+BATCH = _Batch()
+Flocker.ranger_update.batch = BATCH
+Flocker.fiducial_update.batch = BATCH
+
+
+@njit(cache=True)
+def _flock_all(rows, kind, who, found, near, beams, first, headings, row, sees, heading, goal,
+               mode, rand48):
+    """Flocker.ranger_update and .fiducial_update of the entries `rows` in turn; returns how
+    many were done (a command that would not be finite is left to be called on its own)."""
+    n = rows.shape[0]
+    for j in range(n):
+        e = rows[j]
+        f = who[e]
+        if kind[e] == FINDER:
+            sees[f] = found[e]
+            if found[e]:
+                heading[f] = near[e]
+            continue
+        dx = 0.0
+        dy = 0.0
+        for k in range(SONARS):
+            r = beams[first[f, k]]
+            a = headings[f, k]
+            dx += r * math.cos(a)
+            dy += r * math.sin(a)
+        if dx == 0 or dy == 0:
+            continue
+        resultant = math.atan2(dy, dx)
+        forward = 0.0
+        turn = EXPAND_GAIN * resultant
+        clear = True
+        for c in range(CLEAR_K.shape[0]):
+            if not beams[first[f, CLEAR_K[c]]] > CLEAR_LEAST[c]:
+                clear = False
+                break
+        if clear and abs(resultant) < SAFE_ANGLE:
+            forward = SPEED
+            if sees[f]:
+                turn += FLOCK_GAIN * heading[f]
+        elif abs(turn) < SLOW_TURN:
+            turn = drand48_next(rand48)
+        if not (math.isfinite(forward) and math.isfinite(turn)):
+            return j
+        goal[row[f], 0] = forward
+        goal[row[f], 1] = 0.0
+        goal[row[f], 2] = 0.0
+        goal[row[f], 3] = turn
+        mode[row[f]] = VELOCITY
+    return n

@@ -164,6 +164,10 @@ class Energy:
         self._static_takers = None
 
     # ---- the models' lives (Model::Startup / Shutdown) -------------------------------------
+    def has_packs(self):
+        """Whether any model has a power pack (else nothing here ever does anything)."""
+        return any(getattr(m, 'power_pack', None) is not None for m in self.world.models)
+
     def started(self, model):
         if find_power_pack(model) is not None:
             self._enable(model)

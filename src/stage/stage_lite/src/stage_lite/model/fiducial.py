@@ -56,11 +56,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import models
+from .jit import njit, prange
+from .motion import normalize
+from .motion import pose_add as pose_add_kernel
 from .pose import pose_add, stage_normalize
+from .raytrace import trace
 
 DEFAULT_RANGE_MAX = 8.0          # max_range_anon, m
 DEFAULT_RANGE_MAX_ID = 5.0       # max_range_id, m
 DEFAULT_FOV = math.pi            # rad
+#: From this many finder-candidate pairs in a step, the finders are shared among numba's
+#: threads (each pair may cost a ray).
+PARALLEL_CANDIDATES = 1000
 
 
 @dataclass(frozen=True)
@@ -75,6 +82,12 @@ class FiducialReading:
     id: int            # his fiducial_return, or 0 at range_max_id and beyond
 
 
+def python_poses(models, body=False, at=None):
+    """Model.global_pose (or body_pose) of each model, as an (n, 4) array."""
+    return np.array([m.body_pose() if body else m.global_pose() for m in models],
+                    np.float64).reshape(-1, 4)
+
+
 class FiducialIndex:
     """World::models_with_fiducials and its two sets sorted by x and by y.
 
@@ -85,6 +98,14 @@ class FiducialIndex:
 
     def __init__(self, models, rank=None):
         self.rank = rank if rank is not None else (lambda m: m.index)
+        # poses(models, body=False, at=None): their global poses (or their bodies' frames)
+        # now, an (n, 4) array (at: their indices, or None); the World gives its kernels'
+        # (World.global_poses)
+        self.poses = python_poses
+        self._constants = {}
+        self._finder_row = {}
+        self.finder_table = dict(ints=np.zeros((0, 4), np.int64),
+                                 floats=np.zeros((0, 3), np.float64))
         self.models = []      # Stage's vector: insertion order (erase, then push_back)
         for m in models:
             self.set_return(m, m.fiducial_return)
@@ -110,9 +131,46 @@ class FiducialIndex:
     def begin_step(self):
         """World::Update's first work: the sets sorted by global x and by global y (ties by
         address: rank) rebuilt from the fiducial-bearing models' poses now."""
-        poses = [(m.global_pose(), self.rank(m), m) for m in self.models]
-        self._by_x = [m for _, _, m in sorted(poses, key=lambda t: (t[0][0], t[1]))]
-        self._by_y = [m for _, _, m in sorted(poses, key=lambda t: (t[0][1], t[1]))]
+        members = self._members = list(self.models)
+        _, at, self._ranks = self.constants(members)
+        poses = self.poses(members, at=at)
+        # stable sorts: equal (x, rank) keep the models' order, as sorted() does
+        self._order_x = np.lexsort((self._ranks, poses[:, 0]))
+        self._order_y = np.lexsort((self._ranks, poses[:, 1]))
+        self._by_x = [members[k] for k in self._order_x.tolist()]
+        self._by_y = [members[k] for k in self._order_y.tolist()]
+
+    def constants(self, models):
+        """(root indices, model indices, ranks) of the models, arrays, kept for the same
+        list of models (the sets' members from one begin_step to the next)."""
+        key = (self.rank, tuple(models))
+        got = self._constants.get(key)
+        if got is None:
+            if len(self._constants) > 8:
+                self._constants.clear()
+            got = self._constants[key] = (
+                np.array([h.root.index for h in models], np.int64),
+                np.array([h.index for h in models], np.int64),
+                np.array([self.rank(h) for h in models], np.float64))
+        return got
+
+    def finder_rows(self, finders, sight):
+        """Each finder's row in finder_table ('ints': root index, ignore_zloc, the tree
+        sight's static tables know it by, model index; 'floats': range_max, range_max_id,
+        fov: what a finder does not change once loaded), added the first time it is seen."""
+        row = self._finder_row
+        new = [f for f in finders if f not in row]
+        if new:
+            table = self.finder_table
+            for f in new:
+                row[f] = len(row)
+            root = [f.root.index for f in new]
+            table['ints'] = np.concatenate((table['ints'], np.array(
+                [(r, int(f.ignore_zloc), sight.tree_key(r), f.index)
+                 for f, r in zip(new, root, strict=True)], np.int64)))
+            table['floats'] = np.concatenate((table['floats'], np.array(
+                [(f.range_max, f.range_max_id, f.fov) for f in new], np.float64)))
+        return np.fromiter((row[f] for f in finders), np.int64, len(finders))
 
     def nearby(self, x, y, rng):
         """The candidates of a finder at global (x, y) with range rng, in Stage's order
@@ -159,7 +217,9 @@ class Fiducial(models.Fiducial):
         self.range_max_id = DEFAULT_RANGE_MAX_ID
         self.fov = DEFAULT_FOV
         self.ignore_zloc = False
-        self.fiducials = []
+        self._fiducials = []
+        # (update_all's _Seen, this finder's place in it) while the readings are not made
+        self._seen = None
 
     def load(self, wf, rng):
         """ModelFiducial::Load: Model::Load, then the finder's own properties."""
@@ -178,6 +238,11 @@ class Fiducial(models.Fiducial):
     def update(self, index, sight, layer):
         """ModelFiducial::Update: the readings (self.fiducials, also returned) of the
         candidates index offers, rays through the grid's `layer`."""
+        update_all([self], index, sight, layer)
+        return self.fiducials
+
+    def update_one_by_one(self, index, sight, layer):
+        """update(), candidate by candidate in Python (sees(): the rule as written)."""
         gx, gy, _, _ = self.global_pose()
         self.fiducials = []
         for him in index.nearby(gx, gy, self.range_max):
@@ -185,6 +250,41 @@ class Fiducial(models.Fiducial):
             if reading is not None:
                 self.fiducials.append(reading)
         return self.fiducials
+
+    @property
+    def fiducials(self):
+        """What the last update saw (FiducialReadings, Stage's order); made from the
+        kernel's numbers when first asked."""
+        if self._seen is not None:
+            step, i = self._seen
+            members, poses, (out_c, out_f, out_id) = step.members, step.poses, step.out
+            at, count = i * len(members), int(step.count[i])
+            self._seen = None
+            end = at + count
+            self._fiducials = [
+                _reading(members[c], poses[c].tolist(), rng, bearing, geom_a, fid)
+                for c, (rng, bearing, geom_a), fid in zip(
+                    out_c[at:end].tolist(), out_f[at:end].tolist(), out_id[at:end].tolist(),
+                    strict=True)]
+        return self._fiducials
+
+    @fiducials.setter
+    def fiducials(self, value):
+        self._fiducials = value
+        self._seen = None
+
+    def nearest(self):
+        """(range, his heading relative to the finder's) of the first reading of the least
+        range, or None (what pioneer_flocking takes of the last update)."""
+        if self._seen is not None:
+            step, i = self._seen
+            near = step.nearest[i]
+            return (float(near[0]), float(near[1])) if near[2] else None
+        best = None
+        for seen in self._fiducials:
+            if seen.range < (best.range if best is not None else 1e6):
+                best = seen
+        return None if best is None else (best.range, best.geom[3])
 
     def sees(self, him, sight, layer):
         """AddModelIfVisible: the reading of `him`, or None."""
@@ -214,3 +314,197 @@ class Fiducial(models.Fiducial):
             model=him, range=rng, bearing=dtheta,
             geom=(size[0], size[1], size[2], stage_normalize(hispose[3] - ma)),
             pose=hispose, id=him.fiducial_return if rng < self.range_max_id else 0)
+
+
+def _reading(him, hispose, rng, bearing, geom_a, fid):
+    size = him.geom_size
+    return FiducialReading(model=him, range=rng, bearing=bearing,
+                           geom=(size[0], size[1], size[2], geom_a), pose=tuple(hispose),
+                           id=fid)
+
+
+def update_all(finders, index, sight, layer):
+    """ModelFiducial::Update of each finder in turn, as Fiducial.update_one_by_one does it,
+    in one kernel: the candidates (index's sets, their global poses now), the rule and the
+    rays (sight's). Nothing moves between the finders' updates, so the poses are read once."""
+    members = index._members
+    if not members:
+        for f in finders:
+            f.fiducials = []
+        return
+    n, m = len(finders), len(members)
+    member_root, member_index, _ = index.constants(members)
+    poses = index.poses(members, at=member_index)
+    member_key = np.fromiter((h.fiducial_key for h in members), np.int64, m)
+    member_return = np.fromiter((h.fiducial_return for h in members), np.int64, m)
+    rows = index.finder_rows(finders, sight)
+    table = index.finder_table
+    fin = np.empty((n, 10), np.float64)
+    at = table['ints'][rows, 3]
+    fin[:, 0:3] = index.poses(finders, at=at)[:, (0, 1, 3)]
+    fin[:, 3:7] = index.poses(finders, body=True, at=at)
+    fin[:, 7:10] = table['floats'][rows]
+    ints = np.empty((n, 3), np.int64)
+    ints[:, 0] = np.fromiter((f.fiducial_key for f in finders), np.int64, n)
+    ints[:, 1:3] = table['ints'][rows, 0:2]
+    # the static tables their rays read: one per (height, tree holding static bodies or not)
+    z, tree = fin[:, 5], table['ints'][rows, 2]
+    classes = np.zeros(n, np.int64)
+    if (z == z[0]).all() and (tree == tree[0]).all():
+        st = sight.static_first(float(z[0]), int(tree[0]))
+    else:
+        tables = []
+        for i in range(n):
+            got = sight.static_first(float(z[i]), int(tree[i]))
+            for k, t in enumerate(tables):
+                if t is got:
+                    classes[i] = k
+                    break
+            else:
+                classes[i] = len(tables)
+                tables.append(got)
+        st = np.concatenate(tables)
+    sp = sight.space
+    count = np.zeros(n, np.int64)
+    nearest = np.zeros((n, 3), np.float64)      # range, heading, whether any
+    out = (np.empty(n * m, np.int64), np.empty((n * m, 3), np.float64),
+           np.empty(n * m, np.int64))
+    see = _see_all_parallel if n * m >= PARALLEL_CANDIDATES else _see_all
+    see(fin, ints, classes, poses, index._order_x, index._order_y, index._ranks, member_key,
+        member_root, member_index, member_return, layer, sp.ppm, sp.rx0, sp.ry0, sp.nrx,
+        sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st, sp.dyn_head, sp.ent_block,
+        sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin, sp.blk_zmax, sight.model_root,
+        sight.visible, count, nearest, *out)
+    step = _Seen(members, poses, out, count, nearest)
+    for i, f in enumerate(finders):
+        f._fiducials = []
+        f._seen = (step, i)
+
+
+class _Seen:
+    """What update_all's kernel found: the members, their poses, the readings' numbers (each
+    finder's from i * len(members) on, count[i] of them), each finder's nearest."""
+
+    __slots__ = ('members', 'poses', 'out', 'count', 'nearest')
+
+    def __init__(self, members, poses, out, count, nearest):
+        self.members = members
+        self.poses = poses
+        self.out = out
+        self.count = count
+        self.nearest = nearest
+
+
+@njit(cache=True)
+def _bisect_right(keys, order, x):
+    """bisect.bisect_right over keys[order[...]] (sorted or not, as Python's does it)."""
+    lo = 0
+    hi = order.shape[0]
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if x < keys[order[mid]]:
+            hi = mid
+        else:
+            lo = mid + 1
+    return lo
+
+
+@njit(cache=True)
+def _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root, index,
+             ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
+             dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+             model_root, visible, count, nearest, out_c, out_f, out_id):
+    """Finder i's update (fin: gx, gy, ga, body x, y, z, a, range_max, range_max_id, fov;
+    ints: key, root, ignore_zloc): its readings written to out from i * len(poses) on
+    (candidate, range, bearing, his heading relative to the finder's, id), count[i] of
+    them, and nearest[i] the range and heading of the first of the least range below 1e6
+    (Fiducial.nearest), and 1 if there is one."""
+    m = poses.shape[0]
+    gx, gy, ma = fin[i, 0], fin[i, 1], fin[i, 2]
+    rmax = fin[i, 7]
+    # the candidates: Stage's box, by the sets' bounds (nearby, _above)
+    sx = _bisect_right(xs, order_x, gx - rmax)
+    ex = _bisect_right(xs, order_x, gx + rmax)
+    sy = _bisect_right(ys, order_y, gy - rmax)
+    ey = _bisect_right(ys, order_y, gy + rmax)
+    in_x = np.zeros(m, np.bool_)
+    for k in range(sx, ex):
+        in_x[order_x[k]] = True
+    picked = np.empty(m, np.int64)
+    n = 0
+    for k in range(sy, ey):
+        c = order_y[k]
+        if in_x[c]:
+            in_x[c] = False         # a model is in a set once
+            picked[n] = c
+            n += 1
+    cands = picked[:n][np.argsort(ranks[picked[:n]], kind='mergesort')]
+    at = i * m
+    for c in cands:
+        if ints[i, 0] != key[c]:
+            continue
+        dx = poses[c, 0] - gx
+        dy = poses[c, 1] - gy
+        rng = math.hypot(dy, dx)
+        if rng >= rmax:
+            continue
+        dtheta = normalize(math.atan2(dy, dx) - ma)
+        if abs(dtheta) > fin[i, 9] / 2.0:
+            continue
+        if root[c] == ints[i, 1]:
+            continue
+        ox, oy, oz, oa = pose_add_kernel(fin[i, 3], fin[i, 4], fin[i, 5], fin[i, 6], 0.0,
+                                         0.0, 0.0, dtheta)
+        _, hit = trace(ox, oy, oz, oa, rmax, ppm, classes[i], ints[i, 1], layer, rx0, ry0,
+                       nrx, nry, reg_count, reg_static, reg_dyn, st_first, dyn_head,
+                       ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+                       model_root, visible)
+        if ints[i, 2] != 0 and hit < 0:
+            hit = index[c]
+        if hit != index[c]:
+            continue
+        out_c[at] = c
+        out_f[at, 0] = rng
+        out_f[at, 1] = dtheta
+        out_f[at, 2] = normalize(poses[c, 3] - ma)
+        out_id[at] = ret[c] if rng < fin[i, 8] else 0
+        if rng < (nearest[i, 0] if nearest[i, 2] != 0.0 else 1e6):
+            nearest[i, 0] = rng
+            nearest[i, 1] = out_f[at, 2]
+            nearest[i, 2] = 1.0
+        at += 1
+    count[i] = at - i * m
+
+
+@njit(cache=True)
+def _see_all(fin, ints, classes, poses, order_x, order_y, ranks, key, root, index, ret,
+             layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
+             dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+             model_root, visible, count, nearest, out_c, out_f, out_id):
+    """Every finder's update (_see_one), in this thread."""
+    xs = poses[:, 0].copy()
+    ys = poses[:, 1].copy()
+    for i in range(fin.shape[0]):
+        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root,
+                 index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+                 st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                 blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)
+
+
+@njit(parallel=True, cache=True)
+def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, ranks, key, root, index,
+                      ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+                      st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                      blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id):
+    """_see_all, the finders shared among numba's threads (each writes its own rows),
+    dealt out in turn (neighbouring finders, whose work is alike, to different threads)."""
+    xs = poses[:, 0].copy()
+    ys = poses[:, 1].copy()
+    n = fin.shape[0]
+    half = (n + 1) // 2
+    for j in prange(n):
+        i = 2 * j if j < half else 2 * (j - half) + 1
+        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root,
+                 index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+                 st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                 blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)

@@ -73,22 +73,33 @@ class Random:
 
 class Rand48:
     """The drand48() stream: x <- (0x5DEECE66D * x + 0xB) mod 2^48; srand48(seed) sets the
-    high 32 bits to seed and the low 16 to 0x330E. Unseeded, glibc's x is 0."""
+    high 32 bits to seed and the low 16 to 0x330E. Unseeded, glibc's x is 0. The state is a
+    one-element uint64 array (`state`) so that kernels draw from it too (drand48_next)."""
 
     _A, _C, _M = 0x5DEECE66D, 0xB, (1 << 48) - 1
 
     def __init__(self, seed=None):
-        self._x = 0
+        self.state = np.zeros(1, np.uint64)
         if seed is not None:
             self.srand48(seed)
 
     def srand48(self, seed):
-        self._x = ((seed & _M32) << 16) | 0x330E
+        self.state[0] = ((seed & _M32) << 16) | 0x330E
 
     def drand48(self):
         """The next value in [0, 1): the 48 bits as a double's mantissa."""
-        self._x = (self._A * self._x + self._C) & self._M
-        return self._x / float(1 << 48)
+        x = (self._A * int(self.state[0]) + self._C) & self._M
+        self.state[0] = x
+        return x / float(1 << 48)
+
+
+@njit(cache=True)
+def drand48_next(state):
+    """Rand48.drand48 in a kernel, on its state array (uint64 arithmetic wraps mod 2^64,
+    of which 2^48 is a divisor)."""
+    x = (state[0] * np.uint64(0x5DEECE66D) + np.uint64(0xB)) & np.uint64((1 << 48) - 1)
+    state[0] = x
+    return x / float(1 << 48)
 
 
 @njit(cache=True)

@@ -8,6 +8,7 @@ import math
 
 from .models import Model, read_pose
 from .pose import stage_normalize
+from .robot_state import PoseRow
 
 # ModelPosition's integration error when the world gives no odom_error: each axis drawn once
 # in [-E/2, E/2) (the angle's 0.05 is used as radians: it is not read from a file)
@@ -15,7 +16,25 @@ INTEGRATION_ERROR_MAX = (0.03, 0.03, 0.0, 0.05)
 
 
 class Position(Model):
-    """ModelPosition: drive, localisation and velocity bounds; its state lives in the World."""
+    """ModelPosition: drive, localisation and velocity bounds; its state lives in the World
+    (its pose too: a row of the world's RobotArrays once the World has bound it)."""
+
+    _pose_row = None
+
+    @property
+    def pose(self):
+        return self._pose_row.get()
+
+    @pose.setter
+    def pose(self, value):
+        if self._pose_row is None:
+            self._pose_row = PoseRow(value)
+        else:
+            self._pose_row.set(value)
+
+    def bind_pose(self, rows, slot):
+        """The pose from now on is rows[slot] (the world's RobotArrays.pose)."""
+        self._pose_row.bind(rows, slot)
 
     def construct(self):
         self.drive = 'diff'

@@ -27,6 +27,9 @@ class Sensor:
         # what its last update read (the world points these into its beam arrays)
         self.ranges = None
         self.intensities = None
+        # the world's beam array the ranges view, and where they start in it
+        self.beams = None
+        self.beam_at = 0
 
     def load(self, wf, e):
         self.where = (wf.entities[e].path, wf.entities[e].line)
@@ -60,10 +63,14 @@ class Ranger(Model):
     def ray_origin(self, sensor):
         """The first ray's pose (x, y, z, a) in the world, as Sensor::Update makes it: the
         sensor's pose, turned to the first beam, raised to half the transducer's height."""
+        return pose_add(self.body_pose(), self.ray_local(sensor))
+
+    @staticmethod
+    def ray_local(sensor):
+        """The first ray's pose in the ranger's body frame."""
         x, y, z, a = sensor.pose
         start = -sensor.fov / 2.0 if sensor.samples > 1 else 0.0
-        local = (x, y, z + sensor.size[2] / 2.0, a + start)
-        return pose_add(self.body_pose(), local)
+        return (x, y, z + sensor.size[2] / 2.0, a + start)
 
     @staticmethod
     def sample_increment(sensor):

@@ -10,6 +10,7 @@ import math
 import numpy as np
 
 from .pose import stage_normalize as _normalize
+from .robot_state import MODE_CODE, MODES, RobotArrays
 
 
 class RangerView:
@@ -47,10 +48,13 @@ class RangerView:
 
 
 class Robot:
-    """A position model and its Stage state (goal, velocity, estimate, stall)."""
+    """A position model and its Stage state (goal, velocity, estimate, stall): rows of a
+    RobotArrays (robot_state.py), its own until the World binds it to its world's."""
 
     def __init__(self, index, model, rangers):
         self.index = index
+        self._st = RobotArrays(1)
+        self._i = 0
         self.model = model
         self.model_name = model.name
         self.color_rgb = model.color[:3]
@@ -72,6 +76,69 @@ class Robot:
         # drawing order, and those indices in one array (world_load fills both)
         self.blocks = []
         self.block_ids = np.zeros(0, np.int64)
+
+    def bind(self, state):
+        """From now on the state is row `index` of `state` (the world's RobotArrays), and
+        so is the position model's pose."""
+        state.copy_row(self.index, self._st, self._i)
+        self._st = state
+        self._i = self.index
+        self.model.bind_pose(state.pose, self.index)
+
+    def command_rows(self):
+        """(goal array, mode array, row) of the arrays the command lives in."""
+        return self._st.goal, self._st.mode, self._i
+
+    @property
+    def goal(self):
+        """The last command (x, y, z, a): cmd_vel, SetSpeed, SetAcceleration or GoTo."""
+        return tuple(self._st.goal[self._i].tolist())
+
+    @goal.setter
+    def goal(self, value):
+        self._st.goal[self._i] = value
+
+    @property
+    def control_mode(self):
+        """'velocity', 'acceleration' or 'position' (Stage's CONTROL_*)."""
+        return MODES[self._st.mode[self._i]]
+
+    @control_mode.setter
+    def control_mode(self, value):
+        self._st.mode[self._i] = MODE_CODE[value]
+
+    @property
+    def velocity(self):
+        return tuple(self._st.velocity[self._i].tolist())
+
+    @velocity.setter
+    def velocity(self, value):
+        self._st.velocity[self._i] = value
+
+    @property
+    def est_pose(self):
+        return tuple(self._st.est[self._i].tolist())
+
+    @est_pose.setter
+    def est_pose(self, value):
+        self._st.est[self._i] = value
+
+    @property
+    def stalled(self):
+        return bool(self._st.stalled[self._i])
+
+    @stalled.setter
+    def stalled(self, value):
+        self._st.stalled[self._i] = value
+
+    @property
+    def truth_twist(self):
+        """Ground truth's twist over the last step (vx, vy, wz)."""
+        return tuple(self._st.twist[self._i].tolist())
+
+    @truth_twist.setter
+    def truth_twist(self, value):
+        self._st.twist[self._i] = value
 
     def commanded_velocity(self, dt):
         """ModelPosition::Update's velocity from the goal, before velocity_bounds: [x, y, z,

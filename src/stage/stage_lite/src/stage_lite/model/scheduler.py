@@ -10,6 +10,15 @@ thread, the workers' beside the moves, then, in series, calls the update callbac
 model that updated, queue by queue in the order they updated, then the world's callbacks.
 The workers' queues are taken here one after the other, 1 to threads: in Stage they race
 each other, so any fixed order is one Stage could have given.
+
+Batches: a model whose only update callback has a `batch` attribute may have it called
+together with the next models' of the same batch (World.step does so), through
+batch.prepare(entries) (a plan for all the world's (function, argument, owner) entries of
+that batch, or None: call them one by one) and batch.run(plan, rows), which calls the
+entries `rows` (their places in `entries`, an int64 array) in turn; it must leave
+everything as calling them in turn would (each with its argument, returning false) and
+return how many it did: the one after those is then called on its own, and the rest after
+it.
 """
 from .events import EventQueue
 
@@ -35,6 +44,10 @@ class Scheduler:
         self.on_error = None
         # told of each model's Startup and Shutdown (the energy model: energy.Energy)
         self.lifecycle = None
+        # bumped at every change of subscriptions or update callbacks (the World keeps
+        # arrays of both, remade when this changes)
+        self.version = 0
+        self._queued_in = {}   # model -> the queues it has a slot in
 
     # ---- subscriptions -------------------------------------------------------------------
     def subscribed(self, model):
@@ -48,6 +61,8 @@ class Scheduler:
             queue = (self.random.random() % self.threads) + 1 if model.thread_safe else 0
             self.queue_of[model] = queue
             self.queues[queue].push(now_us + model.interval_us, model)
+            self._queued_in.setdefault(model, set()).add(queue)
+            self._requeue(model, model.interval_us)
             if self.lifecycle is not None:
                 self.lifecycle.started(model)
             self.call(model, CB_STARTUP)
@@ -60,19 +75,31 @@ class Scheduler:
             return False
         self.subs[model] = count - 1
         if count == 1:
+            self._requeue(model, None)
             self.call(model, CB_SHUTDOWN)
             if self.lifecycle is not None:
                 self.lifecycle.stopped(model)
             return True
         return False
 
+    def _requeue(self, model, interval):
+        """Every queue holding the model queues it again at `interval` (None: not again),
+        as its subscription now says."""
+        self.version += 1
+        for queue in self._queued_in.get(model, ()):
+            self.queues[queue].set_interval(model, interval)
+
     # ---- a step --------------------------------------------------------------------------
     def due(self, queue, now_us):
         """The models of one queue that update now, in Stage's order; each is queued again
         while subscribed."""
-        subs = self.subs
-        return self.queues[queue].consume(
-            now_us, lambda m: m.interval_us if subs.get(m, 0) > 0 else None)
+        q = self.queues[queue]
+        return [q.items[s] for s in q.consume_slots(now_us).tolist()]
+
+    def due_indices(self, queue, now_us):
+        """due() as the models' indices (int64 array)."""
+        q = self.queues[queue]
+        return q.tags[q.consume_slots(now_us)]
 
     # ---- callbacks -----------------------------------------------------------------------
     def add_callback(self, model, kind, function, argument=None):
@@ -80,6 +107,7 @@ class Scheduler:
             raise ValueError('unknown callback kind %r (one of %s)'
                              % (kind, ', '.join(CALLBACK_KINDS)))
         self.callbacks.setdefault((model, kind), []).append((function, argument, self.owner))
+        self.version += 1
 
     def has_callbacks(self, model, kind):
         return bool(self.callbacks.get((model, kind)))
@@ -91,6 +119,7 @@ class Scheduler:
             keep = [e for e in list(entries) if not self._run(e, model)]
             if len(keep) != len(entries):
                 self.callbacks[(model, kind)] = keep
+                self.version += 1
 
     def add_world_callback(self, function, argument=None):
         self.world_callbacks.append((function, argument, self.owner))

@@ -67,7 +67,7 @@ class Sight:
         self.space = space
         self.models = list(models)        # by index: what a ray's hit names
         self.model_root = np.array([m.root.index for m in models], np.int64)
-        self._visible = np.zeros(len(models), np.float64)   # no ranger_return test
+        self.visible = np.zeros(len(models), np.float64)   # no ranger_return test
         moving = moving_models(robots)
         xs, ys, ms, zmin, zmax = [], [], [], [], []
         for m in models:
@@ -99,13 +99,21 @@ class Sight:
             self._zmin = self._zmax = np.zeros(0)
         self._pages = max(1, int(space.reg_static.max(initial=-1)) + 1)
         self._tables = {}
+        # the trees the static drawings belong to: a finder of any other tree sees them all
+        self._static_roots = set(self.model_root[self._model].tolist())
         self._any_z = (np.zeros(0), np.zeros(0))
+
+    def tree_key(self, finder_root):
+        """The tree static_first's tables know a finder's by: its own if it holds static
+        bodies, else -1 (one table for all those)."""
+        return finder_root if finder_root in self._static_roots else -1
 
     def static_first(self, z, finder_root):
         """(1, pages, cells) int32: per static cell, the first static model (load order:
         Stage's drawing order) a ray of height z (NO_Z: any height) from finder_root's tree
-        stops at, or -1. Built once per (z, tree)."""
-        key = (z, finder_root)
+        stops at, or -1. Built once per z and tree (one for all the trees that hold no
+        static drawing)."""
+        key = (z, self.tree_key(finder_root))
         table = self._tables.get(key)
         if table is None:
             ok = self.model_root[self._model] != finder_root
@@ -147,5 +155,5 @@ class Sight:
                  sp.ppm, sp.rx0, sp.ry0, sp.nrx, sp.nry, sp.reg_count, sp.reg_static,
                  sp.reg_dyn, self.static_first(z if ztest else NO_Z, root), sp.dyn_head,
                  sp.ent_block, sp.ent_next, sp.ent_seq, sp.blk_model, zmin, zmax,
-                 self.model_root, self._visible, out_range, out_model)
+                 self.model_root, self.visible, out_range, out_model)
         return out_range, out_model

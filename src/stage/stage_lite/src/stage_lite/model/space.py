@@ -69,7 +69,7 @@ class Space:
         if sx.size:
             x0, y0 = min(x0, int(sx.min())), min(y0, int(sy.min()))
             x1, y1 = max(x1, int(sx.max())), max(y1, int(sy.max()))
-        self._resize(x0, y0, x1, y1)
+        self.resize(x0, y0, x1, y1)
         # static pages: one per region holding static drawings
         reg = self._regions(sx, sy)
         regions, page_of = np.unique(reg, return_inverse=True)
@@ -137,7 +137,7 @@ class Space:
     def _regions(self, x, y):
         return ((y >> grid.RBITS) - self.ry0) * self.nrx + ((x >> grid.RBITS) - self.rx0)
 
-    def _resize(self, x0, y0, x1, y1):
+    def resize(self, x0, y0, x1, y1):
         """Makes the table hold cells x0..x1, y0..y1 (plus a margin), keeping its content."""
         rx0 = (x0 >> grid.RBITS) - MARGIN_REGIONS
         ry0 = (y0 >> grid.RBITS) - MARGIN_REGIONS
@@ -171,7 +171,7 @@ class Space:
         if ((x0 >> grid.RBITS) < self.rx0 or (y0 >> grid.RBITS) < self.ry0
                 or (x1 >> grid.RBITS) >= self.rx0 + self.nrx
                 or (y1 >> grid.RBITS) >= self.ry0 + self.nry):
-            self._resize(x0, y0, x1, y1)
+            self.resize(x0, y0, x1, y1)
 
     def draw(self, blocks, poses, layer, seqs):
         """Stage's UnMap then Map of blocks (int array) at their body poses (rows x, y, cos,

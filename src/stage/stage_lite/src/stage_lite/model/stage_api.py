@@ -13,7 +13,10 @@ from dataclasses import dataclass, replace
 
 from .energy import find_power_pack
 from .pose import pose_add, stage_normalize
+from .robot_state import MODE_CODE
 from .scheduler import CB_FLAGDECR, CB_FLAGINCR
+
+AXES = {'x': 0, 'y': 1, 'z': 2, 'a': 3}     # a command's parts: their places in a goal
 
 
 @dataclass(frozen=True)
@@ -92,6 +95,11 @@ class WorldApi:
 
     def drand48(self):
         return self._world.rand48.drand48()
+
+    def drand48_state(self):
+        """drand48()'s state array, for a controller's batch that draws in a kernel
+        (glibc_random.drand48_next)."""
+        return self._world.rand48.state
 
     def add_update_callback(self, function, argument=None):
         """World::AddUpdateCallback: f(world, arg) after every step's model callbacks."""
@@ -172,9 +180,10 @@ class ModelApi:
 
     def add_callback(self, kind, function, argument=None):
         """Model::AddCallback: kind 'update', 'flag_incr', 'flag_decr', 'startup' or
-        'shutdown'; function(model, argument)."""
-        self._world.scheduler.add_callback(self._model, kind,
-                                           lambda _, a: function(self, a), argument)
+        'shutdown'; function(model, argument). A function with a `batch` (see
+        scheduler.py) may be called together with others of its batch."""
+        self._world.scheduler.add_callback(self._model, kind, ApiCallback(self, function),
+                                           argument)
 
     # ---- energy (energy.py) --------------------------------------------------------------
     def find_power_pack(self):
@@ -206,6 +215,22 @@ class ModelApi:
         flag = self._model.flags.pop()
         self._world.scheduler.call(self._model, CB_FLAGDECR)
         return flag
+
+
+class ApiCallback:
+    """A controller's callback as the scheduler calls it, f(model, arg), with the model's
+    handle for the controller; `function` is the controller's, `batch` its batch (or
+    None)."""
+
+    __slots__ = ('handle', 'function', 'batch')
+
+    def __init__(self, handle, function):
+        self.handle = handle
+        self.function = function
+        self.batch = getattr(function, 'batch', None)
+
+    def __call__(self, _, argument):
+        return self.function(self.handle, argument)
 
 
 class PositionApi(ModelApi):
@@ -242,15 +267,14 @@ class PositionApi(ModelApi):
         self._command('position', x=x, y=y, z=0.0, a=a)
 
     def _command(self, mode, **parts):
-        r = self._robot
-        goal = dict(zip('xyza', r.goal, strict=True))
         for axis, value in parts.items():
             if not math.isfinite(value):
                 raise ValueError('%s: %s %s must be finite, got %r'
                                  % (self.token, mode, axis, value))
-            goal[axis] = float(value)
-        r.goal = (goal['x'], goal['y'], goal['z'], goal['a'])
-        r.control_mode = mode
+        goal, modes, row = self._robot.command_rows()
+        for axis, value in parts.items():
+            goal[row, AXES[axis]] = float(value)
+        modes[row] = MODE_CODE[mode]
 
     def get_velocity(self):
         return Pose(*self._robot.velocity)
@@ -265,6 +289,12 @@ class PositionApi(ModelApi):
 
     def stalled(self):
         return self._robot.stalled
+
+    def command_rows(self):
+        """(goal, mode, row): the world's arrays this robot's command lives in (goal[row] =
+        (x, y, z, a), mode[row] a robot_state.MODE_CODE), for a controller's batch that
+        commands many robots in one kernel as set_speed would."""
+        return self._robot.command_rows()
 
 
 class SensorApi:
@@ -282,6 +312,13 @@ class SensorApi:
     sample_count = property(lambda self: self._sensor.samples)
     ranges = property(lambda self: self._sensor.ranges)
     intensities = property(lambda self: self._sensor.intensities)
+
+    def first_range_at(self):
+        """(array, index): where ranges[0] lives (the world's beam array), for a
+        controller's batch that reads many sensors in one kernel; None for a sensor the
+        world does not cast."""
+        s = self._sensor
+        return None if s.beams is None else (s.beams, s.beam_at)
 
     @property
     def bearings(self):
@@ -314,6 +351,12 @@ class FiducialApi(ModelApi):
 
     def get_fiducials(self):
         return self.fiducials
+
+    def nearest(self):
+        """(range, his heading relative to the finder's) of the first of the readings of
+        the least range, or None when it saw nothing: min(fiducials, by range), without
+        making the readings."""
+        return self._model.nearest()
 
 
 class BlobfinderApi(ModelApi):

@@ -6,16 +6,21 @@ numba compiles the model's kernels (jit.py) at their first call and keeps them i
 starts in a fraction of a second instead of a few seconds. A small world with a floor plan,
 a body, a robot that moves into it, a camera, a fiducial finder and a blobfinder, two lasers
 whose rays numba's threads share and one whose few rays are cast in the calling thread (with
-angular noise, and Stage's lasernoise controller on it) and Stage's wander on one robot
-calls every kernel with the argument types stageros uses (test_stage_warmup.py checks that
-none is left out).
+angular noise, and Stage's lasernoise controller on it), Stage's wander on one robot and
+expand_swarm and pioneer_flocking on two others (their batches' kernels) calls every kernel
+with the argument types stageros uses (test_stage_warmup.py checks that none is left out);
+a second world, whose robot stands on another model, the kernels a World moving its robots
+one by one calls.
 """
 import os
 import sys
 import tempfile
 import time
 
-# lasers with enough beams for the threads too (space.PARALLEL_RAYS), and one with a few
+# lasers with enough beams for the threads too (space.PARALLEL_RAYS), and one with a few;
+# a ring of 12 one-beam sensors for Stage's expand_swarm and pioneer_flocking (their batches)
+RING = 'ranger( %s )' % ' '.join(
+    'sensor( pose [ 0 0 0 %d ] range [ 0 2 ] fov 30 samples 1 )' % (30 * k) for k in range(12))
 WORLD = '''resolution 0.02
 define laser ranger ( sensor( range [ 0 5 ] fov 180 samples %d ) )
 define short_laser ranger ( sensor( range [ 0 5 ] fov 180 samples 5 noise [ 0.01 0.01 1 ] )
@@ -26,6 +31,15 @@ position( pose [ 0 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) fiducial( ) blobfinder(
 position( pose [ -0.6 0 0 0 ] size [ 0.3 0.3 0.2 ] laser( ) camera( resolution [ 8 6 ] )
           ctrl "wander" )
 position( pose [ 0 -0.6 0 0 ] size [ 0.3 0.3 0.2 ] short_laser( ) )
+position( pose [ 0.6 0.6 0 0 ] size [ 0.1 0.1 0.1 ] %s ctrl "expand_swarm" )
+position( pose [ -0.6 0.6 0 0 ] size [ 0.1 0.1 0.1 ] fiducial_return 2 %s fiducial( )
+          ctrl "pioneer_flocking" )
+'''
+
+
+# a robot on a table: the World moves it robot by robot (world.World._step_each)
+ON_A_MODEL = '''resolution 0.02
+model( pose [ 0 0 0 0 ] size [ 0.6 0.6 0.1 ] position( size [ 0.2 0.2 0.2 ] ) )
 '''
 
 
@@ -38,7 +52,7 @@ def warm():
             f.write(b'P5 4 4 255\n' + bytes([0] * 4 + [255, 0, 255, 255] + [255] * 4 + [0] * 4))
         path = os.path.join(tmp, 'warm.world')
         with open(path, 'w') as f:
-            f.write(WORLD % PARALLEL_RAYS)
+            f.write(WORLD % (PARALLEL_RAYS, RING, RING))
         world = load_world(path)
         world.set_command(0, 1.0, 0.0, 0.0)
         for _ in range(6):
@@ -47,11 +61,19 @@ def warm():
             world.scan_from(robot.rangers[0], robot.model.pose)
         world.occupancy()
         warm_sensors(world)
+        path = os.path.join(tmp, 'on_a_model.world')
+        with open(path, 'w') as f:
+            f.write(ON_A_MODEL)
+        world = load_world(path)
+        world.set_command(0, 0.1, 0.0, 0.1)
+        for _ in range(2):
+            world.step()
 
 
 def warm_sensors(world):
-    """The fiducial finder's and the blobfinder's rays (sight.py's kernel)."""
-    from .fiducial import FiducialIndex
+    """The fiducial finder's and the blobfinder's rays (sight.py's kernel), and the
+    finders' kernel for many finders at once (the threads')."""
+    from .fiducial import PARALLEL_CANDIDATES, FiducialIndex, update_all
     from .sight import Sight
     sight = Sight(world.models, world.robots, world.space)
     index = FiducialIndex(world.models)
@@ -59,6 +81,8 @@ def warm_sensors(world):
     for m in world.models:
         if m.kind == 'fiducial':
             m.update(index, sight, layer)
+            update_all([m] * (PARALLEL_CANDIDATES // len(index.models) + 1), index, sight,
+                       layer)
         elif m.kind == 'blobfinder':
             m.update(sight, layer)
 

@@ -36,13 +36,15 @@ import numpy as np
 from . import controllers, floor, grid, world_load
 from .blobfinder import Blobfinder
 from .camera import CameraRig
+from .casts import RangerCasts
 from .energy import Energy
-from .fiducial import Fiducial, FiducialIndex
+from .fiducial import Fiducial, FiducialIndex, python_poses, update_all
 from .glibc_random import Rand48, Random
+from .motion import Chains, Motion, elements
 from .noise import RangerNoise
 from .pose import pose_add, stage_normalize
-from .ranger import Ranger
 from .robot import body_row
+from .robot_state import RobotArrays
 from .scheduler import CB_UPDATE, Scheduler
 from .sight import Sight
 from .stage_api import api_of
@@ -51,7 +53,7 @@ from .worldfile import WorldError
 __all__ = ['World', 'WorldError', 'load_world']
 
 
-class World:
+class World(RangerCasts):
     """A loaded world. Use load_world()."""
 
     def __init__(self, path, seed=None, stageros=True, ctrlargs='', model_order=None):
@@ -81,6 +83,10 @@ class World:
         self.show_clock_interval = loaded.show_clock_interval
         self.models = loaded.models
         self.robots = loaded.robots
+        # every robot's state, and its position model's pose, as rows of one set of arrays
+        self.state = RobotArrays(len(self.robots))
+        for r in self.robots:
+            r.bind(self.state)
         self.space = loaded.space
         self.warnings = loaded.warnings
         self.stageros_warnings = loaded.stageros_warnings
@@ -103,9 +109,31 @@ class World:
         self._movers = sorted(self.robots, key=lambda r: self._rank[r.model])
         self.energy = Energy(self, self._rank.__getitem__)   # energy.py: packs, charging
         self.scheduler.lifecycle = self.energy
+        # the robots' updates and moves in kernels, when every robot is a top-level model
+        # (its pose its world pose), moved in file order (no other model order given) and
+        # no model has a power pack (the energy model follows each update); else robot by
+        # robot (_step_each)
+        fast = (all(r.model.parent is None for r in self.robots)
+                and self._movers == self.robots and not self.energy.has_packs())
+        self.motion = Motion(self.robots, self.space) if fast else None
+        self._robot_slot = np.full(len(self.models), -1, np.int64)
+        for r in self.robots:
+            self._robot_slot[r.model.index] = r.index
+        self._kind = {k: np.array([isinstance(m, k) for m in self.models], np.bool_)
+                      for k in (Blobfinder, Fiducial)}
+        self._any_finder = bool(self._kind[Fiducial].any())
+        self._any_blobfinder = bool(self._kind[Blobfinder].any())
+        self._masks_version = None
+        self._model_chains = None        # every model's chain, made when first needed
+        self._root_of = np.array([m.root.index for m in self.models], np.int64)
+        # controllers' callbacks of one batch run together (scheduler.py); False: each on
+        # its own (the same run: the tests compare the two)
+        self.batches = True
         self._prepare_rays()
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models, rank=self._rank.__getitem__)
+        if self.motion is not None:
+            self.fiducial_index.poses = self.global_poses
         self.sight = Sight(self.models, self.robots, self.space)
         # the cameras stageros publishes (camera.py); they draw before the step's moves
         self.cameras = CameraRig(self.models, self.robots, self._statics, self.ppm,
@@ -135,6 +163,28 @@ class World:
             r.goal = (0.0, 0.0, 0.0, 0.0)
             r.control_mode = 'velocity'
             r.velocity = (0.0, 0.0, 0.0, 0.0)
+
+    def global_poses(self, models, body=False, at=None):
+        """Model.global_pose (body_pose with body) of each model, an (n, 4) array: carried
+        from the robots' poses by motion.Chains' kernel for the models of robot trees (at:
+        their indices, if the caller has them)."""
+        if at is None:
+            at = np.fromiter((m.index for m in models), np.int64, len(models))
+        if (self._robot_slot[self._root_of[at]] < 0).any():     # a static model among them
+            return python_poses(models, body)
+        if self._model_chains is None:
+            n = len(self.models)
+            slots = [max(0, self._robot_slot[m.root.index]) for m in self.models]
+            self._model_chains = Chains(
+                [(r, elements(m)) for r, m in zip(slots, self.models, strict=True)]
+                + [(r, elements(m, [m.geom_pose])) for r, m in zip(slots, self.models,
+                                                                  strict=True)])
+            self._model_chains.count = n
+        out = np.empty((len(models), 4), np.float64)
+        if body:
+            at = at + self._model_chains.count
+        self._model_chains.poses(at, self.state.pose, out)
+        return out
 
     def robot_of(self, model):
         """The Robot of a position model (None for other models)."""
@@ -171,7 +221,113 @@ class World:
             r.stalled = False
 
     def step(self):
-        """One World::Update (see the module docstring)."""
+        """One World::Update (see the module docstring): every robot's update and move in
+        motion.py's kernels (or robot by robot, _step_each, when a robot stands on another
+        model), the updates of a queue taken as the models' indices."""
+        if self.motion is None:
+            self._step_each()
+            return
+        self.sim_time_us += self.interval_us
+        now = self.sim_time_us
+        dt = self.interval_us / 1e6
+        scheduler = self.scheduler
+        models = self.models
+        sensing = (self.updates + 1) % 2
+        subscribed, with_callbacks = self._masks()
+        if self._any_finder:     # the finders' sets (with no finder, nobody reads them)
+            self.fiducial_index.begin_step()
+        updated = [scheduler.due_indices(0, now)]
+        slots = self._robot_slot[updated[0]]
+        self.motion.update(self.robots, self.state, slots[slots >= 0], subscribed, dt)
+        if self._any_blobfinder:
+            for i in updated[0][self._kind[Blobfinder][updated[0]]].tolist():
+                models[i].update(self.sight, sensing)     # beside the position updates
+        self.cameras.update(now)
+        self.motion.move(self.state, subscribed, dt, self.updates % 2)
+        for queue in range(1, self.threads + 1):
+            updated.append(scheduler.due_indices(queue, now))
+        every = np.concatenate(updated)
+        rangers = self._ranger_slot[every]
+        rangers = rangers[rangers >= 0]
+        if rangers.size:
+            self.cast_ranger_slots(rangers, sensing)
+        if self._any_finder:
+            finders = [models[i] for ids in updated[1:]
+                       for i in ids[self._kind[Fiducial][ids]].tolist()]
+            if finders:
+                update_all(finders, self.fiducial_index, self.sight, sensing)
+        self._call_updates(every, with_callbacks)
+        scheduler.call_world(self)
+        if rangers.size:
+            self._refresh_view_slots(rangers)   # what stageros then reads, callbacks' changes in
+        self.updates += 1
+
+    def _masks(self):
+        """(per robot: subscribed; per model: has update callbacks), remade when the
+        scheduler's subscriptions or callbacks have changed, and with them the batches
+        (scheduler.py): per model, its only update callback's batch (its number, 0 for
+        none) and its row in that batch's plan."""
+        scheduler = self.scheduler
+        if self._masks_version != scheduler.version:
+            self._subscribed = np.array([scheduler.subscribed(r.model) for r in self.robots],
+                                        np.bool_)
+            entries = [scheduler.callbacks.get((m, CB_UPDATE)) for m in self.models]
+            self._with_callbacks = np.array([bool(e) for e in entries], np.bool_)
+            self._batches = [None]
+            self._batch_entries = [None]
+            self._batch_id = np.zeros(len(self.models), np.int64)
+            self._batch_row = np.zeros(len(self.models), np.int64)
+            for i, e in enumerate(entries):
+                batch = getattr(e[0][0], 'batch', None) if e and len(e) == 1 else None
+                if batch is None or not self.batches:
+                    continue
+                if batch not in self._batches:
+                    self._batches.append(batch)
+                    self._batch_entries.append([])
+                b = self._batches.index(batch)
+                self._batch_id[i] = b
+                self._batch_row[i] = len(self._batch_entries[b])
+                self._batch_entries[b].append(e[0])
+            self._plans = {}
+            self._masks_version = scheduler.version
+        return self._subscribed, self._with_callbacks
+
+    def _call_updates(self, every, with_callbacks):
+        """The update callbacks of the models `every` (indices, in update order) that have
+        some, each model's when its turn comes (a callback may add or remove others); runs
+        of models of one batch together."""
+        scheduler = self.scheduler
+        models = self.models
+        at = np.flatnonzero(with_callbacks[every])
+        bids = self._batch_id[every[at]]
+        j = 0
+        while j < at.size:
+            p = int(at[j])
+            b = int(bids[j])
+            if b:
+                k = j + int(np.argmax(bids[j:] != b)) if (bids[j:] != b).any() else at.size
+                done = self._run_batch(b, self._batch_row[every[at[j:k]]])
+                j += done
+                if done:
+                    continue
+            version = scheduler.version
+            scheduler.call(models[int(every[p])], CB_UPDATE)
+            j += 1
+            if scheduler.version != version:      # callbacks changed: look again
+                _, with_callbacks = self._masks()
+                at = np.concatenate((at[:j], p + 1 + np.flatnonzero(with_callbacks[every[p + 1:]])))
+                bids = self._batch_id[every[at]]
+
+    def _run_batch(self, b, rows):
+        """Batch b's callbacks of the rows `rows` (its plan's), in turn: how many were
+        done (0: call the first on its own)."""
+        plan = self._plans.get(b, False)
+        if plan is False:
+            plan = self._plans[b] = self._batches[b].prepare(self._batch_entries[b])
+        return 0 if plan is None else self._batches[b].run(plan, rows)
+
+    def _step_each(self):
+        """step() robot by robot (a robot stands on another model)."""
         self.sim_time_us += self.interval_us
         now = self.sim_time_us
         dt = self.interval_us / 1e6
@@ -270,162 +426,6 @@ class World:
         """Per block of the robot's tree: a new drawing number per model (MapWithChildren)."""
         return np.array([s for m, ks in r.blocks for s in [self.space.next_seq()] * len(ks)],
                         np.int64)
-
-    # ---- rays --------------------------------------------------------------------------
-    def _prepare_rays(self):
-        """Every sensor of every ranger the robots carry, in order, the tables of a cast of
-        them all, and the beam arrays their readings live in (each sensor's `ranges` and
-        `intensities` are views into them)."""
-        self._sensors = [(g, s) for r in self.robots for g in r.ranger_models
-                         for s in g.sensors]
-        self._sensor_ids = {}
-        for k, (g, _) in enumerate(self._sensors):
-            self._sensor_ids.setdefault(g, []).append(k)
-        self._all_sensors = list(range(len(self._sensors)))
-        self._rays = self._ray_tables(self._all_sensors)
-        self._subset_cache = {}
-        offsets = self._rays['offsets']
-        self._beam_ranges = np.zeros(int(offsets[-1]), np.float64)
-        self._beam_intensities = np.zeros(int(offsets[-1]), np.float64)
-        for k, (_, s) in enumerate(self._sensors):
-            s.ranges = self._beam_ranges[offsets[k]:offsets[k + 1]]
-            s.ranges[:] = s.range[1]
-            s.intensities = self._beam_intensities[offsets[k]:offsets[k + 1]]
-        self._views_of = {v.model: v for r in self.robots for v in r.rangers}
-        self._noise = dict(
-            rmax=np.array([s.range[1] for _, s in self._sensors], np.float64),
-            prop=np.array([s.noise[1] for _, s in self._sensors], np.float64),
-            const=np.array([s.noise[0] for _, s in self._sensors], np.float64),
-            angular=np.array([s.noise[2] != 0.0 for _, s in self._sensors], np.bool_))
-
-    def _ray_tables(self, due):
-        """The per-sensor tables of the sensors `due` (indices into _sensors) for
-        Space.cast."""
-        sensors = [self._sensors[k] for k in due]
-        counts = np.array([s.samples for _, s in sensors], np.int64)
-        return dict(
-            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
-            sensor=np.repeat(np.arange(len(sensors), dtype=np.int64), counts),
-            incr=np.array([Ranger.sample_increment(s) for _, s in sensors], np.float64),
-            rmax=np.array([s.range[1] for _, s in sensors], np.float64),
-            ray_class=np.array([self._ray_zs.index(g.ray_origin(s)[2]) for g, s in sensors],
-                               np.int64),
-            root=np.array([g.root.index for g, _ in sensors], np.int64),
-            origins=np.empty((len(sensors), 4), np.float64))
-
-    def _subset_tables(self, positions):
-        """_ray_tables of some sensors, kept for the next step that casts the same ones (in
-        Stage's own program only the controllers' rangers update, the same every step)."""
-        key = tuple(positions)
-        cached = self._subset_cache.get(key)
-        if cached is None:
-            if len(self._subset_cache) > 64:
-                self._subset_cache.clear()
-            cached = self._subset_cache[key] = self._ray_tables(positions)
-        return cached
-
-    def _refresh_views(self, rangers):
-        """stageros's views of the rangers that updated: their first sensor's readings."""
-        views = self._views_of
-        for g in rangers:
-            v = views.get(g)
-            if v is not None:
-                s = v.sensor
-                v.ranges[:] = s.ranges
-                v.intensities[:] = s.intensities
-                v.has_data = True
-
-    def cast_rays(self, due=None, layer=None):
-        """Casts the rays of the sensors `due` (indices into the world's sensors, in the
-        order their noise is drawn; default all) from the robots' poses now, through `layer`
-        (default: the one the next step's rays read), and stores each sensor's readings."""
-        if layer is None:
-            layer = (self.updates + 1) % 2
-        due = self._all_sensors if due is None else due
-        every = len(due) == len(self._sensors)
-        positions = self._all_sensors if every else sorted(due)
-        tables = self._rays if every else self._subset_tables(positions)
-        origins = tables['origins']
-        for i, k in enumerate(positions):
-            g, s = self._sensors[k]
-            origins[i] = g.ray_origin(s)
-        rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
-                                   tables['rmax'], tables['ray_class'], tables['root'], layer)
-        rr = self.space.model_rr
-        intensities = np.where(hit >= 0, rr[np.maximum(hit, 0)], 0.0)
-        offsets = tables['offsets']
-        row = {k: i for i, k in enumerate(positions)}
-        self._draw_noise(rng, offsets, [row[k] for k in due], positions, layer)
-        if every:
-            self._beam_ranges[:] = rng
-            self._beam_intensities[:] = intensities
-        else:
-            for i, k in enumerate(positions):
-                _, s = self._sensors[k]
-                s.ranges[:] = rng[offsets[i]:offsets[i + 1]]
-                s.intensities[:] = intensities[offsets[i]:offsets[i + 1]]
-
-    def _draw_noise(self, rng, offsets, rows, positions, layer):
-        """Stage's draws of each sensor (rows of the cast, in Stage's order), noise added to
-        rng in place; a sensor with angular noise casts its beams again, one at a time, at
-        the angles its draws turn them to."""
-        sensor_of = np.asarray(positions, np.int64)
-        angular = self._noise['angular'][sensor_of]
-        if not angular.any():
-            self.noise.apply_rows(rng, offsets, np.asarray(rows, np.int64),
-                                  self._noise['rmax'][sensor_of],
-                                  self._noise['prop'][sensor_of],
-                                  self._noise['const'][sensor_of])
-            return
-        for i in rows:
-            g, s = self._sensors[positions[i]]
-            beams = slice(offsets[i], offsets[i + 1])
-            if not angular[i]:
-                self.noise.apply_rows(rng, offsets, np.array([i], np.int64),
-                                      self._noise['rmax'][sensor_of],
-                                      self._noise['prop'][sensor_of],
-                                      self._noise['const'][sensor_of])
-                continue
-            rng[beams] = self._angular_scan(g, s, layer)
-
-    def _angular_scan(self, g, s, layer):
-        """A sensor with angular noise, beam by beam as Sensor::Update casts it: each beam's
-        angle (kept as a float, as Stage's is) turned by its draw, cast, then its range
-        noise drawn."""
-        x, y, z, a = g.ray_origin(s)
-        incr = Ranger.sample_increment(s)
-        tables = self._ray_tables([self._sensors.index((g, s))])
-        tables['sensor'] = np.zeros(1, np.int64)
-        tables['offsets'] = np.array([0, 1], np.int64)
-        out = np.empty(s.samples, np.float64)
-        for t in range(s.samples):
-            saved = float(np.float32(a))
-            turned = float(np.float32(a + incr * s.noise[2] * self.noise.angle_noise() * 0.5))
-            tables['origins'][0] = (x, y, z, turned)
-            rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
-                                     tables['sensor'], tables['rmax'], tables['ray_class'],
-                                     tables['root'], layer)
-            out[t] = self.noise.range_noise(float(rng[0]), s.range[1], s.noise)
-            a = saved + incr
-        return out
-
-    def scan_from(self, view, pose):
-        """The ranges (float32) `view` reads with its robot at `pose` (x, y, z, a), through
-        the layer the last step's rays read. In Stage the rangers run in a worker thread
-        beside the moves: now and then one starts before its robot has moved, and its scan
-        is this one with the robot's pose before the step."""
-        robot = view.model.parent
-        keep = robot.pose
-        robot.pose = pose
-        try:
-            tables = self._ray_tables([self._sensors.index((view.model, view.sensor))])
-            tables['origins'][0] = view.model.ray_origin(view.sensor)
-        finally:
-            robot.pose = keep
-        rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
-                                 tables['sensor'], tables['rmax'], tables['ray_class'],
-                                 tables['root'], self.updates % 2)
-        return rng.astype(np.float32)
 
     # ---- pictures and maps ---------------------------------------------------------------
     def occupancy(self):

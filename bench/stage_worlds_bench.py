@@ -1,0 +1,158 @@
+"""Stage's own program on Stage's own worlds: stage_lite's `stage -g` beside the real Stage's.
+
+    ./ws bench stage_worlds_bench [--peer STAGE] [--worlds DIR] [--runs N] [--only NAME ..]
+                                  [--ours COMMAND] [--before COMMAND]
+
+STAGE is the real Stage 4.3.0's program (default /work/scratch/peer/install/bin/stage, its
+libstage found through LD_LIBRARY_PATH=<its prefix>/lib), DIR a copy of Stage's `worlds/`
+folder (default /work/scratch/worlds, with `benchmark/`); without either the bench says what
+is missing and skips (exit 0). stage_lite's is `stage` from the sourced workspace (or
+--ours, a command line); --before adds another stage_lite to the rotation (a command line
+running an earlier tree, say), to compare before and after in one run.
+
+The worlds (WORLDS): simple (two wanderers), autolab_run (wanderers on Stage's autolab
+plan), pioneer_flocking_run (100 pioneers, sonars and fiducial finders), benchmark/cave
+(100 pioneers with sonars and lasers, expand_pioneer; its `paused 1` turned to 0) and
+benchmark/hospital (1000 swarmbots, 12 IR rangers each, expand_swarm). Each is copied twice
+into a folder that mirrors DIR (links to its includes and bitmaps), with `quit_time` T1 and
+T2; `stage -g` runs each copy to its quit_time under /usr/bin/time, and the difference of
+the two runs is what the simulated seconds between T1 and T2 cost, loading and start-up
+left out:
+* wall s per simulated s = (wall(T2) - wall(T1)) / (T2 - T1), and the real-time factor;
+* cores = (user + sys)(T2) - (user + sys)(T1) over the same wall difference;
+* peak RSS (MB) of the T2 run.
+RUNS times (default 3), each simulator in turn, one at a time; medians of the runs. Prints
+a markdown table, a row per world and simulator, with the ratio of each real-time factor to
+the real Stage's (above 1: faster than Stage).
+"""
+import argparse
+import os
+import re
+import shlex
+import statistics
+import subprocess
+import sys
+import tempfile
+
+RUNS = 3
+PEER = '/work/scratch/peer/install/bin/stage'
+WORLDS_DIR = '/work/scratch/worlds'
+#: (name, world file under DIR, T1 s, T2 s): T2 - T1 long enough for a second of wall time
+#: or more on the slower simulator, short enough for the whole bench to take minutes
+WORLDS = (('simple', 'simple.world', 10, 310),
+          ('autolab', 'autolab_run.world', 5, 35),
+          ('pioneer_flocking', 'pioneer_flocking_run.world', 5, 45),
+          ('cave', 'benchmark/cave.world', 5, 35),
+          ('hospital', 'benchmark/hospital.world', 2, 12))
+TIME_FORMAT = 'bench-time %e %U %S %M'
+RUN_TIMEOUT_S = 1800.0
+
+
+def mirror(src, dst):
+    """dst: a folder of links to src's entries, its sub-folders mirrored the same way."""
+    os.makedirs(dst, exist_ok=True)
+    for name in os.listdir(src):
+        path = os.path.join(src, name)
+        if os.path.isdir(path) and not os.path.islink(path):
+            mirror(path, os.path.join(dst, name))
+        else:
+            os.symlink(path, os.path.join(dst, name))
+
+
+def timed_copy(root, world, quit_time_s):
+    """A copy of root/world beside it (a new file), running from the start and quitting at
+    quit_time_s; its path."""
+    path = os.path.join(root, world)
+    with open(path, encoding='latin-1') as f:
+        text = f.read()
+    text = re.sub(r'(?m)^\s*quit_time\b.*$', '', text)
+    text = re.sub(r'(?m)^(\s*)paused\s+1\b', r'\1paused 0', text)
+    stem, ext = os.path.splitext(path)
+    out = '%s_bench_q%d%s' % (stem, quit_time_s, ext)
+    with open(out, 'w', encoding='latin-1') as f:
+        f.write(text + '\nquit_time %d\n' % quit_time_s)
+    return out
+
+
+def run(command, world, env):
+    """`command -g world` to its quit_time: (wall s, cpu s, peak RSS MB)."""
+    args = ['/usr/bin/time', '-f', TIME_FORMAT, *command, '-g', os.path.basename(world)]
+    done = subprocess.run(args, cwd=os.path.dirname(world), env=env, capture_output=True,
+                          text=True, timeout=RUN_TIMEOUT_S, check=False)
+    lines = [line for line in done.stderr.splitlines() if line.startswith('bench-time ')]
+    if done.returncode != 0 or not lines:
+        raise SystemExit('%s on %s failed (exit %s):\n%s' % (
+            ' '.join(command), world, done.returncode, done.stderr[-2000:]))
+    wall, user, system, rss_kb = (float(v) for v in lines[-1].split()[1:])
+    return wall, user + system, rss_kb / 1024.0
+
+
+def measure(command, short, long_, span_s, env):
+    """One run of each copy: (wall s per simulated s, cores, peak RSS MB)."""
+    wall0, cpu0, _ = run(command, short, env)
+    wall1, cpu1, rss = run(command, long_, env)
+    wall = max(wall1 - wall0, 1e-3)
+    return wall / span_s, (cpu1 - cpu0) / wall, rss
+
+
+def missing(peer, worlds_dir):
+    """What stops the bench, or None."""
+    if not os.access(peer, os.X_OK):
+        return 'the real Stage is not at %s (--peer)' % peer
+    for _, world, _, _ in WORLDS:
+        if not os.path.isfile(os.path.join(worlds_dir, world)):
+            return "Stage's world %s is not in %s (--worlds)" % (world, worlds_dir)
+    return None
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('--peer', default=PEER, help="the real Stage's program")
+    ap.add_argument('--worlds', default=WORLDS_DIR, help="a copy of Stage's worlds/ folder")
+    ap.add_argument('--runs', type=int, default=RUNS)
+    ap.add_argument('--only', nargs='+', choices=[w[0] for w in WORLDS],
+                    help='these worlds only')
+    ap.add_argument('--ours', default='stage', help="stage_lite's program (a command line)")
+    ap.add_argument('--before', help='an earlier stage_lite, measured beside (a command line)')
+    args = ap.parse_args(argv)
+    why = missing(args.peer, args.worlds)
+    if why:
+        print('stage_worlds_bench: skipped: %s' % why)
+        return
+    peer_env = dict(os.environ, LD_LIBRARY_PATH=os.path.join(
+        os.path.dirname(os.path.dirname(os.path.abspath(args.peer))), 'lib'))
+    sides = [('Stage', [args.peer], peer_env)]
+    if args.before:
+        sides.append(('stage_lite before', shlex.split(args.before), dict(os.environ)))
+    sides.append(('stage_lite', shlex.split(args.ours), dict(os.environ)))
+    rows = []
+    with tempfile.TemporaryDirectory(prefix='stage_worlds_bench_') as tmp:
+        mirror(args.worlds, tmp)
+        for name, world, t1, t2 in WORLDS:
+            if args.only and name not in args.only:
+                continue
+            short, long_ = timed_copy(tmp, world, t1), timed_copy(tmp, world, t2)
+            runs = {side: [] for side, _, _ in sides}
+            for k in range(args.runs):
+                for side, command, env in sides:     # one simulator at a time, in turn
+                    print('bench: %s, %s, run %d of %d' % (name, side, k + 1, args.runs),
+                          flush=True)
+                    runs[side].append(measure(command, short, long_, t2 - t1, env))
+            rows.append((name, {side: tuple(statistics.median(r[i] for r in got)
+                                            for i in range(3))
+                                for side, got in runs.items()}))
+    print()
+    print('| world | simulator | wall ms per simulated s | real-time factor | vs Stage | cores |'
+          ' peak RSS MB |')
+    print('|---|---|---|---|---|---|---|')
+    for name, by in rows:
+        real = by['Stage'][0]
+        for side, _, _ in sides:
+            wall, cores, rss = by[side]
+            print('| %s | %s | %.1f | %.2f | %s | %.2f | %.0f |' % (
+                name, side, wall * 1e3, 1 / wall,
+                '' if side == 'Stage' else '**%.2f x**' % (real / wall), cores, rss))
+
+
+if __name__ == '__main__':
+    sys.exit(main())

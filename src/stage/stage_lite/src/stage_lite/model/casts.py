@@ -1,0 +1,270 @@
+"""The rangers' rays of a World (no rospy): every sensor's tables, the casts of a step's due
+sensors (raytrace.py's kernels through Space.cast), their noise in Stage's order (noise.py),
+and stageros's views of them.
+
+Every sensor's readings live in two beam arrays (each sensor's `ranges` and `intensities`
+are views into them), and so do the views stageros publishes (each ranger's first sensor as
+a float32 scan), so that a step stores and refreshes them with a few array operations. The
+rays leave from each sensor's pose on its robot, carried from the robot's pose by
+motion.Chains (Ranger.ray_origin's sums, in a kernel) when the World moves its robots by
+motion.py, else by Ranger.ray_origin itself.
+"""
+import numpy as np
+
+from .jit import njit
+from .motion import Chains, elements
+from .ranger import Ranger
+
+
+@njit(cache=True)
+def _ranges_of(starts, ends):
+    """The integers starts[0]..ends[0]-1, starts[1]..ends[1]-1, ... in one int64 array."""
+    total = 0
+    for i in range(starts.shape[0]):
+        total += ends[i] - starts[i]
+    out = np.empty(total, np.int64)
+    k = 0
+    for i in range(starts.shape[0]):
+        for v in range(starts[i], ends[i]):
+            out[k] = v
+            k += 1
+    return out
+
+
+class RangerCasts:
+    """The World's rays (a part of World: it uses the world's robots, space, state, noise,
+    motion and updates)."""
+
+    def _prepare_rays(self):
+        """Every sensor of every ranger the robots carry, in order, the tables of a cast of
+        them all, and the beam arrays their readings live in (each sensor's `ranges` and
+        `intensities` are views into them)."""
+        self._sensors = [(g, s) for r in self.robots for g in r.ranger_models
+                         for s in g.sensors]
+        self._sensor_ids = {}
+        for k, (g, _) in enumerate(self._sensors):
+            self._sensor_ids.setdefault(g, []).append(k)
+        self._rays = self._ray_tables(range(len(self._sensors)))
+        self._subset_cache = {}
+        offsets = self._rays['offsets']
+        self._beam_ranges = np.zeros(int(offsets[-1]), np.float64)
+        self._beam_intensities = np.zeros(int(offsets[-1]), np.float64)
+        for k, (_, s) in enumerate(self._sensors):
+            s.ranges = self._beam_ranges[offsets[k]:offsets[k + 1]]
+            s.beams = self._beam_ranges
+            s.beam_at = int(offsets[k])
+            s.ranges[:] = s.range[1]
+            s.intensities = self._beam_intensities[offsets[k]:offsets[k + 1]]
+        self._views_of = {v.model: v for r in self.robots for v in r.rangers}
+        self._prepare_slots(offsets)
+        self._noise = dict(
+            rmax=np.array([s.range[1] for _, s in self._sensors], np.float64),
+            prop=np.array([s.noise[1] for _, s in self._sensors], np.float64),
+            const=np.array([s.noise[0] for _, s in self._sensors], np.float64),
+            angular=np.array([s.noise[2] != 0.0 for _, s in self._sensors], np.bool_))
+
+    def _prepare_slots(self, offsets):
+        """The rangers by slot (their order in the sensors), the models' ranger slots, the
+        robots' sensors' chains, and the views' float32 arrays."""
+        rangers = list(self._sensor_ids)
+        self._ranger_slot = np.full(len(self.models), -1, np.int64)
+        for k, g in enumerate(rangers):
+            self._ranger_slot[g.index] = k
+        self._ranger_models = rangers
+        self._ranger_sensor_off = np.array(
+            [self._sensor_ids[g][0] for g in rangers] + [len(self._sensors)], np.int64)
+        self._all_sensors = np.arange(len(self._sensors), dtype=np.int64)
+        carried = [(r.index, g, s) for r in self.robots for g in r.ranger_models
+                   for s in g.sensors]
+        # a ranger's sensors share its body's frame (computed once per ranger and cast)
+        self._origin_chains = Chains(
+            [(r, elements(g, [g.geom_pose, g.ray_local(s)])) for r, g, s in carried],
+            [(g.index, len(elements(g)) + 1) for _, g, _ in carried])
+        views = [self._views_of.get(g) for g in rangers]
+        self._view_of_slot = views
+        count = [v.samples if v is not None else 0 for v in views]
+        self._view_count = np.array(count, np.int64)
+        self._view_dst_off = np.concatenate(([0], np.cumsum(count)[:-1])).astype(np.int64) \
+            if count else np.zeros(0, np.int64)
+        self._view_src_off = np.array([offsets[self._sensor_ids[g][0]] for g in rangers],
+                                      np.int64)
+        self._view_ranges = np.zeros(sum(count), np.float32)
+        self._view_intensities = np.zeros(sum(count), np.float32)
+        for k, v in enumerate(views):
+            if v is not None:
+                at = slice(self._view_dst_off[k], self._view_dst_off[k] + count[k])
+                self._view_ranges[at] = v.ranges
+                self._view_intensities[at] = v.intensities
+                v.ranges = self._view_ranges[at]
+                v.intensities = self._view_intensities[at]
+        self._slots_cache = {}
+        self._views_without_data = sum(1 for v in views if v is not None and not v.has_data)
+
+    def _ray_tables(self, due):
+        """The per-sensor tables of the sensors `due` (indices into _sensors) for
+        Space.cast."""
+        sensors = [self._sensors[k] for k in due]
+        counts = np.array([s.samples for _, s in sensors], np.int64)
+        return dict(
+            offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
+            sensor=np.repeat(np.arange(len(sensors), dtype=np.int64), counts),
+            incr=np.array([Ranger.sample_increment(s) for _, s in sensors], np.float64),
+            rmax=np.array([s.range[1] for _, s in sensors], np.float64),
+            ray_class=np.array([self._ray_zs.index(g.ray_origin(s)[2]) for g, s in sensors],
+                               np.int64),
+            root=np.array([g.root.index for g, _ in sensors], np.int64),
+            origins=np.empty((len(sensors), 4), np.float64))
+
+    def _subset_tables(self, positions):
+        """_ray_tables of some sensors (an int64 array), with their beams' places in the
+        world's beam arrays (`beams`), kept for the next step that casts the same ones (in
+        Stage's own program only the controllers' rangers update, the same every step)."""
+        key = positions.tobytes()
+        cached = self._subset_cache.get(key)
+        if cached is None:
+            if len(self._subset_cache) > 64:
+                self._subset_cache.clear()
+            cached = self._subset_cache[key] = self._ray_tables(positions.tolist())
+            offsets = self._rays['offsets']
+            cached['beams'] = _ranges_of(offsets[positions], offsets[positions + 1])
+        return cached
+
+    def _refresh_views(self, rangers):
+        """stageros's views of the rangers that updated: their first sensor's readings."""
+        views = self._views_of
+        for g in rangers:
+            v = views.get(g)
+            if v is not None:
+                s = v.sensor
+                v.ranges[:] = s.ranges
+                v.intensities[:] = s.intensities
+                v.has_data = True
+
+    def _refresh_view_slots(self, slots):
+        """_refresh_views of the rangers `slots` (int64 array of ranger slots), at once."""
+        _, dst, src = self._slot_indices(slots)
+        self._view_ranges[dst] = self._beam_ranges[src]
+        self._view_intensities[dst] = self._beam_intensities[src]
+        if self._views_without_data:
+            for k in slots.tolist():
+                v = self._view_of_slot[k]
+                if v is not None and not v.has_data:
+                    v.has_data = True
+                    self._views_without_data -= 1
+
+    def cast_rays(self, due=None, layer=None):
+        """Casts the rays of the sensors `due` (indices into the world's sensors, in the
+        order their noise is drawn; default all) from the robots' poses now, through `layer`
+        (default: the one the next step's rays read), and stores each sensor's readings."""
+        if layer is None:
+            layer = (self.updates + 1) % 2
+        due = self._all_sensors if due is None else np.asarray(due, np.int64)
+        every = len(due) == len(self._sensors)
+        positions = self._all_sensors if every else np.sort(due)
+        tables = self._rays if every else self._subset_tables(positions)
+        origins = tables['origins']
+        if self.motion is not None:
+            self._origin_chains.poses(positions, self.state.pose, origins)
+        else:
+            for i, k in enumerate(positions.tolist()):
+                g, s = self._sensors[k]
+                origins[i] = g.ray_origin(s)
+        rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
+                                   tables['rmax'], tables['ray_class'], tables['root'], layer)
+        rr = self.space.model_rr
+        intensities = np.where(hit >= 0, rr[np.maximum(hit, 0)], 0.0)
+        offsets = tables['offsets']
+        # each due sensor's row of the cast (its last, as a dict of them would say)
+        rows = due if every else np.searchsorted(positions, due, side='right') - 1
+        self._draw_noise(rng, offsets, rows, positions, layer)
+        if every:
+            self._beam_ranges[:] = rng
+            self._beam_intensities[:] = intensities
+        else:
+            self._beam_ranges[tables['beams']] = rng
+            self._beam_intensities[tables['beams']] = intensities
+
+    def cast_ranger_slots(self, slots, layer):
+        """cast_rays of every sensor of the rangers `slots` (int64 array of ranger slots, in
+        the order they updated)."""
+        self.cast_rays(self._slot_indices(slots)[0], layer)
+
+    def _slot_indices(self, slots):
+        """(their sensors, their views' beams, the sensor beams those views show) of the
+        rangers `slots`, kept for the next step with the same rangers."""
+        key = slots.tobytes()
+        cached = self._slots_cache.get(key)
+        if cached is None:
+            if len(self._slots_cache) > 64:
+                self._slots_cache.clear()
+            off = self._ranger_sensor_off
+            src = self._view_src_off[slots]
+            dst = self._view_dst_off[slots]
+            count = self._view_count[slots]
+            cached = self._slots_cache[key] = (_ranges_of(off[slots], off[slots + 1]),
+                                               _ranges_of(dst, dst + count),
+                                               _ranges_of(src, src + count))
+        return cached
+
+    def _draw_noise(self, rng, offsets, rows, positions, layer):
+        """Stage's draws of each sensor (rows of the cast, in Stage's order), noise added to
+        rng in place; a sensor with angular noise casts its beams again, one at a time, at
+        the angles its draws turn them to."""
+        sensor_of = np.asarray(positions, np.int64)
+        angular = self._noise['angular'][sensor_of]
+        if not angular.any():
+            self.noise.apply_rows(rng, offsets, np.asarray(rows, np.int64),
+                                  self._noise['rmax'][sensor_of],
+                                  self._noise['prop'][sensor_of],
+                                  self._noise['const'][sensor_of])
+            return
+        for i in np.asarray(rows).tolist():
+            g, s = self._sensors[positions[i]]
+            beams = slice(offsets[i], offsets[i + 1])
+            if not angular[i]:
+                self.noise.apply_rows(rng, offsets, np.array([i], np.int64),
+                                      self._noise['rmax'][sensor_of],
+                                      self._noise['prop'][sensor_of],
+                                      self._noise['const'][sensor_of])
+                continue
+            rng[beams] = self._angular_scan(g, s, layer)
+
+    def _angular_scan(self, g, s, layer):
+        """A sensor with angular noise, beam by beam as Sensor::Update casts it: each beam's
+        angle (kept as a float, as Stage's is) turned by its draw, cast, then its range
+        noise drawn."""
+        x, y, z, a = g.ray_origin(s)
+        incr = Ranger.sample_increment(s)
+        tables = self._ray_tables([self._sensors.index((g, s))])
+        tables['sensor'] = np.zeros(1, np.int64)
+        tables['offsets'] = np.array([0, 1], np.int64)
+        out = np.empty(s.samples, np.float64)
+        for t in range(s.samples):
+            saved = float(np.float32(a))
+            turned = float(np.float32(a + incr * s.noise[2] * self.noise.angle_noise() * 0.5))
+            tables['origins'][0] = (x, y, z, turned)
+            rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
+                                     tables['sensor'], tables['rmax'], tables['ray_class'],
+                                     tables['root'], layer)
+            out[t] = self.noise.range_noise(float(rng[0]), s.range[1], s.noise)
+            a = saved + incr
+        return out
+
+    def scan_from(self, view, pose):
+        """The ranges (float32) `view` reads with its robot at `pose` (x, y, z, a), through
+        the layer the last step's rays read. In Stage the rangers run in a worker thread
+        beside the moves: now and then one starts before its robot has moved, and its scan
+        is this one with the robot's pose before the step."""
+        robot = view.model.parent
+        keep = robot.pose
+        robot.pose = pose
+        try:
+            tables = self._ray_tables([self._sensors.index((view.model, view.sensor))])
+            tables['origins'][0] = view.model.ray_origin(view.sensor)
+        finally:
+            robot.pose = keep
+        rng, _ = self.space.cast(tables['origins'], tables['incr'], tables['offsets'],
+                                 tables['sensor'], tables['rmax'], tables['ray_class'],
+                                 tables['root'], self.updates % 2)
+        return rng.astype(np.float32)
+

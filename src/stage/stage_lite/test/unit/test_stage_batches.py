@@ -1,0 +1,142 @@
+"""The step's kernels and batches do what the world's one-by-one code does, to the last bit:
+every robot's update and move (motion.py) against World._step_each, the fiducial finders'
+kernel against Fiducial.update_one_by_one, and the controllers' batches (expand_swarm,
+pioneer_flocking) against their callbacks called one by one."""
+import numpy as np
+import pytest
+from stage_lite.model import fiducial as fiducial_module
+from stage_lite.model import world as world_module
+from stage_lite.model.world import load_world
+
+STEPS = 60
+
+ROOM = '''resolution 0.02
+interval_sim 100
+model( pose [ 0 0 0 0 ] size [ 6 6 0.5 ] boundary 1 noblocks 1 )
+model( pose [ 1.2 0.4 0 30 ] size [ 0.5 0.3 0.5 ] )
+'''
+RING = 'ranger( %s )' % ' '.join(
+    'sensor( pose [ 0 0 0 %d ] range [ 0 2 ] fov 30 samples 1 )' % (30 * k) for k in range(12))
+SONARS = 'ranger( %s )' % ' '.join(
+    'sensor( pose [ 0.1 0 0 %d ] range [ 0 5 ] fov 15 samples 1 )' % a
+    for a in (90, 50, 30, 10, -10, -30, -50, -90))
+
+
+def place(k, columns=5, spacing=0.9):
+    return '%.2f %.2f 0 %d' % (-2.2 + spacing * (k % columns), -2.2 + spacing * (k // columns),
+                               (37 * k) % 360 - 180)
+
+
+def write(tmp_path, body):
+    path = tmp_path / 'w.world'
+    path.write_text(ROOM + body)
+    return str(path)
+
+
+def snapshot(w):
+    s = w.state
+    return [a.copy() for a in (s.pose, s.goal, s.mode, s.velocity, s.est, s.stalled,
+                               s.twist, w._beam_ranges, w._beam_intensities,
+                               w.rand48.state, *w.random.state())]
+
+
+def assert_same(a, b, step):
+    for x, y in zip(a, b, strict=True):
+        assert x.tobytes() == y.tobytes(), step
+
+
+DRIVES = '''
+position( name "d" pose [ %s ] size [ 0.4 0.4 0.3 ] laser( )
+          model( pose [ 0.1 0 0 0 ] size [ 0.1 0.1 0.1 ] ) )
+position( name "o" pose [ %s ] size [ 0.3 0.3 0.3 ] drive "omni" localization "odom"
+          odom_error [ 0.02 0.03 0 0.04 ] laser( ) )
+position( name "c" pose [ %s ] size [ 0.5 0.3 0.3 ] drive "car" wheelbase 0.4 laser( ) )
+position( name "a" pose [ %s ] size [ 0.3 0.3 0.3 ] laser( ) )
+position( name "g" pose [ %s ] size [ 0.3 0.3 0.3 ] localization "odom" laser( ) )
+position( name "s" pose [ %s ] size [ 0.3 0.3 0.3 ] )
+''' % tuple(place(k) for k in range(6))
+LASER = 'define laser ranger ( sensor( range [ 0 4 ] fov 180 samples 31 noise [ 0.01 0.02 0 ] ) )\n'
+
+
+def drive(w):
+    """Commands of every kind: velocity (diff, omni, car), acceleration, GoTo; one robot
+    driven into the box and the wall."""
+    w.set_command(0, 0.6, 0.0, 0.3)
+    w.set_command(1, 0.3, -0.4, 0.2)
+    w.set_command(2, 0.5, 0.0, 0.4)
+    w.handle(w.robots[3].model).set_acceleration(0.4, 0.0, -0.3)
+    w.handle(w.robots[4].model).go_to(1.5, -1.0, 0.5)
+    w.set_command(5, 1.0, 0.0, 0.0)
+
+
+def test_the_kernels_move_every_robot_as_the_world_does_one_by_one(tmp_path):
+    path = write(tmp_path, LASER + DRIVES)
+    fast, each = load_world(path, seed=3), load_world(path, seed=3)
+    each.motion = None                  # World._step_each: robot by robot, Python
+    assert fast.motion is not None
+    drive(fast)
+    drive(each)
+    stalls = 0
+    for step in range(STEPS):
+        fast.step()
+        each.step()
+        assert_same(snapshot(fast), snapshot(each), step)
+        stalls += int(fast.state.stalled.sum())
+        for v, u in zip(fast.robots, each.robots, strict=True):
+            for a, b in zip(v.rangers, u.rangers, strict=True):
+                assert a.ranges.tobytes() == b.ranges.tobytes(), step
+    assert stalls > 0                    # the test drove into something
+
+
+def flocking_world(tmp_path, n=12, columns=4, spacing=1.1):
+    body = ''.join('position( name "p%d" pose [ %s ] size [ 0.35 0.3 0.25 ] fiducial_return 1'
+                   ' %s fiducial( range_max 4 ) ctrl "pioneer_flocking" )\n'
+                   % (k, place(k, columns, spacing), SONARS) for k in range(n))
+    return write(tmp_path, body)
+
+
+def swarm_world(tmp_path, n=20):
+    body = ''.join('position( name "s%d" pose [ %s ] size [ 0.1 0.1 0.1 ] %s'
+                   ' ctrl "expand_swarm" )\n' % (k, place(k, 5, 0.5), RING) for k in range(n))
+    return write(tmp_path, body)
+
+
+@pytest.mark.parametrize('make', [swarm_world, flocking_world])
+def test_the_batches_are_the_callbacks_one_by_one(tmp_path, make):
+    path = make(tmp_path)
+    batched = load_world(path, seed=7, stageros=False)
+    alone = load_world(path, seed=7, stageros=False)
+    alone.batches = False
+    for step in range(STEPS):
+        batched.step()
+        alone.step()
+        assert_same(snapshot(batched), snapshot(alone), step)
+    assert batched._plans and not alone._plans            # the batch did run
+    assert np.abs(batched.state.velocity).sum() > 0
+
+
+@pytest.mark.parametrize('robots', [12, 34])     # 34 * 34 pairs: the threads' kernel
+def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robots):
+    assert (robots * robots >= fiducial_module.PARALLEL_CANDIDATES) == (robots == 34)
+    path = flocking_world(tmp_path, robots, 7, 0.7)
+    fast, each = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
+                                                                       stageros=False)
+
+    def one_by_one(finders, index, sight, layer):
+        for f in finders:
+            f.update_one_by_one(index, sight, layer)
+
+    seen = 0
+    for step in range(STEPS):
+        fast.step()
+        with monkeypatch.context() as m:
+            m.setattr(world_module, 'update_all', one_by_one)
+            each.step()
+        assert_same(snapshot(fast), snapshot(each), step)
+        for f, g in zip(fast.models, each.models, strict=True):
+            if isinstance(f, fiducial_module.Fiducial):
+                assert f.nearest() == g.nearest()
+                assert f.fiducials == [r.__class__(**{**r.__dict__, 'model': fast.models[
+                    r.model.index]}) for r in g.fiducials], step
+                seen += len(f.fiducials)
+    assert seen > 0
