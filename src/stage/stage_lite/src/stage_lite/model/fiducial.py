@@ -109,8 +109,8 @@ class FiducialIndex:
         self.models = []      # Stage's vector: insertion order (erase, then push_back)
         for m in models:
             self.set_return(m, m.fiducial_return)
-        self._by_x = []
-        self._by_y = []
+        self._members = []
+        self._order_x = self._order_y = np.zeros(0, np.int64)
         self.begin_step()
 
     def set_return(self, model, value):
@@ -137,8 +137,6 @@ class FiducialIndex:
         # stable sorts: equal (x, rank) keep the models' order, as sorted() does
         self._order_x = np.lexsort((self._ranks, poses[:, 0]))
         self._order_y = np.lexsort((self._ranks, poses[:, 1]))
-        self._by_x = [members[k] for k in self._order_x.tolist()]
-        self._by_y = [members[k] for k in self._order_y.tolist()]
 
     def constants(self, models):
         """(root indices, model indices, ranks) of the models, arrays, kept for the same
@@ -175,8 +173,9 @@ class FiducialIndex:
     def nearby(self, x, y, rng):
         """The candidates of a finder at global (x, y) with range rng, in Stage's order
         (STAGE_FIDUCIAL_BOX, STAGE_MODEL_POINTER_ORDER in the module docstring)."""
-        horiz = _above(self._by_x, 0, x - rng, x + rng)
-        vert = _above(self._by_y, 1, y - rng, y + rng)
+        members = self._members
+        horiz = _above([members[k] for k in self._order_x.tolist()], 0, x - rng, x + rng)
+        vert = _above([members[k] for k in self._order_y.tolist()], 1, y - rng, y + rng)
         return sorted(horiz & vert, key=self.rank)
 
 
@@ -272,6 +271,14 @@ class Fiducial(models.Fiducial):
     def fiducials(self, value):
         self._fiducials = value
         self._seen = None
+
+    def last_nearest(self):
+        """(update_all's nearest array, this finder's row in it) while its readings are not
+        made, else None (then nearest() computes it from them)."""
+        if self._seen is None:
+            return None
+        step, i = self._seen
+        return step.nearest, i
 
     def nearest(self):
         """(range, his heading relative to the finder's) of the first reading of the least
