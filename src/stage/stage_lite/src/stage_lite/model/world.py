@@ -37,7 +37,8 @@ from . import controllers, floor, grid, world_load
 from .blobfinder import Blobfinder
 from .camera import CameraRig
 from .casts import RangerCasts
-from .fiducial import Fiducial, FiducialIndex, python_poses, update_all
+from .fiducial import Fiducial, FiducialIndex, python_poses
+from .finders import update_all
 from .glibc_random import Rand48, Random
 from .motion import Chains, Motion, elements
 from .noise import RangerNoise
