@@ -5,6 +5,7 @@ pioneer_flocking) against their callbacks called one by one."""
 import numpy as np
 import pytest
 from stage_lite.model import fiducial as fiducial_module
+from stage_lite.model import finders as finders_module
 from stage_lite.model import world as world_module
 from stage_lite.model.world import load_world
 
@@ -117,7 +118,7 @@ def test_the_batches_are_the_callbacks_one_by_one(tmp_path, make):
 
 @pytest.mark.parametrize('robots', [12, 34])     # 34 * 34 pairs: the threads' kernel
 def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robots):
-    assert (robots * robots >= fiducial_module.PARALLEL_CANDIDATES) == (robots == 34)
+    assert (robots * robots >= finders_module.PARALLEL_CANDIDATES) == (robots == 34)
     path = flocking_world(tmp_path, robots, 7, 0.7)
     fast, each = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
                                                                        stageros=False)

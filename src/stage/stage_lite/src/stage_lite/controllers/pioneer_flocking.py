@@ -181,6 +181,13 @@ class _Batch:
         near = np.zeros(len(plan['kind']), np.float64)
         finders = plan['finders']
         for e in rows[plan['kind'][rows] == FINDER].tolist():
+            seen = finders[e].last_nearest()
+            if seen is not None:
+                # (the step's nearest array, the finder's row): its nearest, unmade
+                near_of, i = seen
+                found[e] = near_of[i, 2] != 0.0
+                near[e] = near_of[i, 1]
+                continue
             nearest = finders[e].nearest()
             if nearest is not None:
                 found[e] = True

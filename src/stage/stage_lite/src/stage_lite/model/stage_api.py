@@ -358,6 +358,11 @@ class FiducialApi(ModelApi):
         making the readings."""
         return self._model.nearest()
 
+    def last_nearest(self):
+        """(an array of rows (range, heading, found), this finder's row) holding nearest()
+        as the last update's kernel left it, or None: for a controller's batch."""
+        return self._model.last_nearest()
+
 
 class BlobfinderApi(ModelApi):
     """Stage's ModelBlobfinder: `blobs`, what its last update saw (colour, left, top, right,

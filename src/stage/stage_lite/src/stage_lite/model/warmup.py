@@ -73,7 +73,8 @@ def warm():
 def warm_sensors(world):
     """The fiducial finder's and the blobfinder's rays (sight.py's kernel), and the
     finders' kernel for many finders at once (the threads')."""
-    from .fiducial import PARALLEL_CANDIDATES, FiducialIndex, update_all
+    from .fiducial import FiducialIndex
+    from .finders import PARALLEL_CANDIDATES, update_all
     from .sight import Sight
     sight = Sight(world.models, world.robots, world.space)
     index = FiducialIndex(world.models)
