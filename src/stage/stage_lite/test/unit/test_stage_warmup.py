@@ -41,5 +41,5 @@ def test_warm_compiles_every_kernel_python_calls():
                          check=True).stdout
     result = json.loads(out.strip().splitlines()[-1])
     assert {'grid.move', 'grid.redraw', 'raytrace.cast_scans', 'raytrace.cast_scans_parallel',
-            'raytrace.trace', 'image._trace', 'wander._decide'} <= set(result['kernels'])
+            'raytrace.trace', 'image._trace', '_avoid._beam_rule'} <= set(result['kernels'])
     assert result['left'] == [], 'warmup.warm() never calls %s' % result['left']

@@ -26,6 +26,8 @@ import math
 
 from stage_lite.model.stage_api import normalize
 
+from ._avoid import beam_rule
+
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
 AVOID_TURN = 0.5          # rad/s
@@ -88,19 +90,7 @@ def heading_goal(x, y, carrying, hungry):
 def scan_rule(scan):
     """(obstruction, stop, nearest on the left, nearest on the right) of a laser scan, by
     fasr's beam rule: the middle half is n/4 < i < n - n/4, the left half i > n/2."""
-    n = len(scan)
-    obstruction = stop = False
-    min_left = min_right = 1e6
-    for i, r in enumerate(scan):
-        if n // 4 < i < n - n // 4 and r < MIN_FRONT_DISTANCE:
-            obstruction = True
-        if r < STOP_DISTANCE:
-            stop = True
-        if i > n // 2:
-            min_left = min(min_left, r)
-        else:
-            min_right = min(min_right, r)
-    return obstruction, stop, min_left, min_right
+    return beam_rule(scan, 4, MIN_FRONT_DISTANCE, STOP_DISTANCE)
 
 
 class Forager:

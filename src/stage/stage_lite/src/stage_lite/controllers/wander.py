@@ -6,9 +6,7 @@ The decision is Stage's, beam for beam: the middle third is beams n/3 < i < n - 
 division), the left half i > n/2, the right half the rest; the turn lasts random() % 10 + 10
 updates, drawn from the world's random() stream when an avoidance starts.
 """
-import numpy as np
-
-from stage_lite.model.jit import njit
+from ._avoid import beam_rule
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s, while turning away
@@ -46,29 +44,8 @@ def find_laser(model):
 
 def decide(scan):
     """(obstruction ahead, something too close, nearest on the left, nearest on the right)
-    of a scan, by Stage's beam rule."""
-    obstruction, stop, min_left, min_right = _decide(np.asarray(scan, np.float64))
-    return bool(obstruction), bool(stop), min_left, min_right
-
-
-@njit(cache=True)
-def _decide(scan):
-    n = scan.shape[0]
-    obstruction = False
-    stop = False
-    min_left = 1e6
-    min_right = 1e6
-    for i in range(n):
-        r = scan[i]
-        if i > n // 3 and i < n - n // 3 and r < MIN_FRONT_DISTANCE:
-            obstruction = True
-        if r < STOP_DISTANCE:
-            stop = True
-        if i > n // 2:
-            min_left = min(min_left, r)
-        else:
-            min_right = min(min_right, r)
-    return obstruction, stop, min_left, min_right
+    of a scan, by wander's beam rule: its middle third, 1 m ahead, 0.3 m anywhere."""
+    return beam_rule(scan, 3, MIN_FRONT_DISTANCE, STOP_DISTANCE)
 
 
 class Wanderer:
