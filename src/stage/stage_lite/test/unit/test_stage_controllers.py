@@ -96,8 +96,10 @@ def test_the_expand_law_steers_along_the_sum_and_drives_only_when_clear():
     ranges = [1.0] * 12
     ranges[0], ranges[1] = 3.0, 1.2                  # open ahead, a little more on the left
     steer(position, ranger(ranges), law, headings)
-    dx = sum(r * math.cos(a) for r, a in zip(ranges, headings, strict=True))
-    dy = sum(r * math.sin(a) for r, a in zip(ranges, headings, strict=True))
+    dx = dy = 0.0
+    for r, a in zip(ranges, headings, strict=True):   # added in order, as the C loop does
+        dx += r * math.cos(a)                         # (Python 3.12's sum() compensates)
+        dy += r * math.sin(a)
     assert commands[-1] == (0.3, 0.0, math.atan2(dy, dx))
     assert 0 < commands[-1][2] < 0.5                 # a small turn left
     ranges[1] = 0.3                                  # sensor 1 too close: turn only
