@@ -143,30 +143,50 @@ def _steer_all(rows, beams, first, headings, count, clear_k, clear_least, clear_
     n = rows.shape[0]
     for j in range(n):
         i = rows[j]
-        dx = 0.0
-        dy = 0.0
-        for k in range(count[i]):
-            r = beams[first[i, k]]
-            a = headings[i, k]
-            dx += r * math.cos(a)
-            dy += r * math.sin(a)
+        dx, dy = sensors_sum(beams, first[i], headings[i], count[i])
         if dx == 0 or dy == 0:
             continue
         resultant = math.atan2(dy, dx)
         forward = 0.0
-        clear = True
-        for c in range(clear_n[i]):
-            if not beams[first[i, clear_k[i, c]]] > clear_least[i, c]:
-                clear = False
-                break
-        if clear and abs(resultant) < safe[i]:
+        if (all_clear(beams, first[i], clear_k[i], clear_least[i], clear_n[i])
+                and abs(resultant) < safe[i]):
             forward = speed[i]
         turn = gain[i] * resultant
         if not (math.isfinite(forward) and math.isfinite(turn)):
             return j
-        goal[row[i], 0] = forward
-        goal[row[i], 1] = 0.0
-        goal[row[i], 2] = 0.0
-        goal[row[i], 3] = turn
-        mode[row[i]] = VELOCITY
+        set_velocity(goal, mode, row[i], forward, turn)
     return n
+
+
+@njit(cache=True)
+def sensors_sum(beams, first, headings, count):
+    """(dx, dy): the first `count` sensors' first ranges along their headings, added in
+    order as the C loops add them (first: each sensor's first beam in beams)."""
+    dx = 0.0
+    dy = 0.0
+    for k in range(count):
+        r = beams[first[k]]
+        a = headings[k]
+        dx += r * math.cos(a)
+        dy += r * math.sin(a)
+    return dx, dy
+
+
+@njit(cache=True)
+def all_clear(beams, first, sensors, least, count):
+    """Whether each of the first `count` (sensor, least range) pairs reads more than its
+    least, in order (C's && stops at the first that does not)."""
+    for c in range(count):  # noqa: SIM110 - numba compiles no generator for all()
+        if not beams[first[sensors[c]]] > least[c]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def set_velocity(goal, mode, r, forward, turn):
+    """SetSpeed(forward, 0, turn) of robot row r, in the robots' arrays."""
+    goal[r, 0] = forward
+    goal[r, 1] = 0.0
+    goal[r, 2] = 0.0
+    goal[r, 3] = turn
+    mode[r] = VELOCITY

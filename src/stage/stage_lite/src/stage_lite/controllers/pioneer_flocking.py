@@ -18,7 +18,8 @@ import numpy as np
 
 from stage_lite.model.glibc_random import drand48_next
 from stage_lite.model.jit import njit
-from stage_lite.model.robot_state import MODE_CODE
+
+from ._expand import all_clear, sensors_sum, set_velocity
 
 SPEED = 0.4               # m/s
 EXPAND_GAIN = 0.3         # turn per rad of the sonars' resultant
@@ -32,7 +33,6 @@ CLEAR_AHEAD = ((3, SAFE_DISTANCE), (4, SAFE_DISTANCE), (5, SAFE_DISTANCE),
 SLOW_TURN = 0.1           # rad/s: below it a blocked robot turns by drand48() instead
 CLEAR_K = np.array([k for k, _ in CLEAR_AHEAD], np.int64)
 CLEAR_LEAST = np.array([least for _, least in CLEAR_AHEAD], np.float64)
-VELOCITY = MODE_CODE['velocity']
 RANGER, FINDER = 0, 1     # the batch's two kinds of callback
 
 
@@ -217,24 +217,14 @@ def _flock_all(rows, kind, who, found, near, beams, first, headings, row, sees, 
             if found[e]:
                 heading[f] = near[e]
             continue
-        dx = 0.0
-        dy = 0.0
-        for k in range(SONARS):
-            r = beams[first[f, k]]
-            a = headings[f, k]
-            dx += r * math.cos(a)
-            dy += r * math.sin(a)
+        dx, dy = sensors_sum(beams, first[f], headings[f], SONARS)
         if dx == 0 or dy == 0:
             continue
         resultant = math.atan2(dy, dx)
         forward = 0.0
         turn = EXPAND_GAIN * resultant
-        clear = True
-        for c in range(CLEAR_K.shape[0]):
-            if not beams[first[f, CLEAR_K[c]]] > CLEAR_LEAST[c]:
-                clear = False
-                break
-        if clear and abs(resultant) < SAFE_ANGLE:
+        if (all_clear(beams, first[f], CLEAR_K, CLEAR_LEAST, CLEAR_K.shape[0])
+                and abs(resultant) < SAFE_ANGLE):
             forward = SPEED
             if sees[f]:
                 turn += FLOCK_GAIN * heading[f]
@@ -242,9 +232,5 @@ def _flock_all(rows, kind, who, found, near, beams, first, headings, row, sees, 
             turn = drand48_next(rand48)
         if not (math.isfinite(forward) and math.isfinite(turn)):
             return j
-        goal[row[f], 0] = forward
-        goal[row[f], 1] = 0.0
-        goal[row[f], 2] = 0.0
-        goal[row[f], 3] = turn
-        mode[row[f]] = VELOCITY
+        set_velocity(goal, mode, row[f], forward, turn)
     return n
