@@ -8,7 +8,7 @@ the robot's ``base_link``.
 """
 from dataclasses import dataclass
 
-from .names import prefix
+from .names import frame_id, prefix
 
 
 @dataclass(frozen=True)
@@ -28,13 +28,10 @@ def camera_names(index, model_name, robot_count, camera_count, use_model_names=F
         raise ValueError('robot %d of %d with %d cameras is not a robot'
                          % (index, robot_count, camera_count))
     p = prefix(index, model_name, robot_count, use_model_names)
-
-    def frame(name):
-        return name.lstrip('/') if tf2_frames else name
-
     if camera_count == 1:
-        return [CameraNames(p + 'image', p + 'depth', p + 'camera_info', frame(p + 'camera'))]
+        return [CameraNames(p + 'image', p + 'depth', p + 'camera_info',
+                            frame_id(p + 'camera', tf2_frames))]
     d = p or '/'   # per-device names are absolute even for one robot
     return [CameraNames('%simage_%d' % (d, k), '%sdepth_%d' % (d, k),
-                        '%scamera_info_%d' % (d, k), frame('%scamera_%d' % (d, k)))
+                        '%scamera_info_%d' % (d, k), frame_id('%scamera_%d' % (d, k), tf2_frames))
             for k in range(camera_count)]

@@ -38,7 +38,8 @@ def prefix(index, model_name, robot_count, use_model_names):
     return '/robot_%d/' % index
 
 
-def _frame(name, tf2_frames):
+def frame_id(name, tf2_frames):
+    """A frame id as stageros sends it (a leading `/`), or tf2's without it."""
     return name.lstrip('/') if tf2_frames else name
 
 
@@ -59,10 +60,10 @@ def robot_names(index, model_name, robot_count, ranger_count, use_model_names=Fa
     return RobotNames(
         cmd_vel=p + 'cmd_vel', odom=p + 'odom', ground_truth=p + 'base_pose_ground_truth',
         stall=p + 'stall', scans=scans,
-        odom_frame=_frame(p + 'odom', tf2_frames),
-        footprint_frame=_frame(p + 'base_footprint', tf2_frames),
-        base_frame=_frame(p + 'base_link', tf2_frames),
-        laser_frames=tuple(_frame(f, tf2_frames) for f in lasers))
+        odom_frame=frame_id(p + 'odom', tf2_frames),
+        footprint_frame=frame_id(p + 'base_footprint', tf2_frames),
+        base_frame=frame_id(p + 'base_link', tf2_frames),
+        laser_frames=tuple(frame_id(f, tf2_frames) for f in lasers))
 
 
 def all_robot_names(model_names, ranger_counts, use_model_names=False, tf2_frames=False):
