@@ -195,14 +195,15 @@ def _outside(rows, nb, blocks, blk_radius, ppm, rx0, ry0, nrx, nry, box):
 @njit(cache=True)
 def move_robots(first, subscribed, velocity, pose, stalled, twist, dt, layer, r_bm_off,
                 bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks, new_rows,
-                old_rows, seqs, seq, box, blk_radius, ppm, pts, pts_off, vx, vy, rc_start,
-                rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-                reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
+                old_rows, seqs, seq, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
+                rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
+                reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
                 free_state, ent_free, page_free, blk_model, blk_zmin, blk_zmax, model_root,
                 model_obstacle):
     """World.step's moves from robot `first` on, in order (World._move of each subscribed
     robot, then its ground truth's twist). Returns -1 when done, or the robot whose move
-    needs a larger region table (box: the cells it must hold; nothing of it done yet)."""
+    needs more free pages (Space.pages_short) or a larger region table (box: the cells it
+    must hold); nothing of its move done yet."""
     for i in range(first, pose.shape[0]):
         ox, oy, oa = pose[i, 0], pose[i, 1], pose[i, 3]
         vxs, vys, vzs, vas = velocity[i, 0], velocity[i, 1], velocity[i, 2], velocity[i, 3]
@@ -221,6 +222,12 @@ def move_robots(first, subscribed, velocity, pose, stalled, twist, dt, layer, r_
                 _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd,
                            new_rows)
                 blocks = r_blocks[b0:b0 + nb]
+                need = 0
+                for k in range(nb):
+                    need += blk_pages[blocks[k]]
+                if need > free_state[0]:
+                    pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = sx, sy, sz, sa
+                    return i
                 if _outside(new_rows, nb, blocks, blk_radius, ppm, rx0, ry0, nrx, nry, box):
                     pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = sx, sy, sz, sa
                     return i
@@ -347,7 +354,8 @@ class Motion:
                 first, subscribed, state.velocity, state.pose, state.stalled, state.twist,
                 dt, layer, self.r_bm_off, self.bm_nblk, self.bodies.off, self.bodies.pose,
                 self.bodies.stack, self.bodies.zadd, self.r_blk_off, self.r_blocks,
-                self.new_rows, self.old_rows, self.seqs, seq, self.box, sp.blk_radius, sp.ppm,
+                self.new_rows, self.old_rows, self.seqs, seq, self.box, sp.blk_radius,
+                sp.blk_pages, sp.ppm,
                 sp.blk_pts, sp.blk_pts_off, sp._vx, sp._vy, sp.rc_start, sp.rc_len, sp.rc_x,
                 sp.rc_y, sp.rx0, sp.ry0, sp.nrx, sp.nry, sp.reg_count, sp.reg_static,
                 sp.reg_dyn, sp.reg_dyncount, sp.st_coll, sp.blk_class, sp.dyn_head,
@@ -357,4 +365,8 @@ class Motion:
             sp.seq = int(seq[0])
             if first < 0:
                 return
-            sp.resize(*self.box.tolist())
+            blocks = self.r_blocks[self.r_blk_off[first]:self.r_blk_off[first + 1]]
+            if sp.pages_short(blocks):
+                sp.grow_pages()
+            else:
+                sp.resize(*self.box.tolist())

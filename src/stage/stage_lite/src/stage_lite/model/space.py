@@ -15,6 +15,7 @@ MARGIN_REGIONS = 4        # table margin around the bodies, regions (2.56 m at 2
 #: From this many rays in a step, they are shared among numba's threads (below it, starting
 #: the threads costs more than it saves).
 PARALLEL_RAYS = 2000
+PAGES_AT_START = 64       # moving bodies' pages (8 KB each) before the pool grows
 
 
 class DynamicBlock:
@@ -128,10 +129,35 @@ class Space:
         self.ent_next = np.arange(1, entries + 1, dtype=np.int64)
         self.ent_next[-1] = -1
         self.ent_free = np.zeros(1, np.int64)
-        pages = max(1, 2 * sum(_pages(b.block, self.ppm) for b in blocks))
-        self.dyn_head = np.full((pages, 2, grid.REGION_CELLS), -1, np.int32)
-        self.page_free = np.arange(pages, dtype=np.int64)[::-1].copy()
-        self.free_state = np.array([pages], np.int64)
+        # the most regions each block's drawing can take, in both layers: the pages a
+        # block's redraw may need at most; the pool grows as they are needed, never ahead of
+        # them, so that a swarm costs the regions it covers (8 KB each), not its worst case
+        self.blk_pages = np.array([2 * _pages(b.block, self.ppm) for b in blocks], np.int64)
+        self.dyn_head = np.zeros((0, 2, grid.REGION_CELLS), np.int32)
+        self.page_free = np.zeros(0, np.int64)
+        self.free_state = np.zeros(1, np.int64)
+        self.grow_pages(min(int(self.blk_pages.sum()), PAGES_AT_START))
+
+    def pages_short(self, blocks):
+        """Whether redrawing these blocks could need more free pages than the pool has."""
+        return int(self.blk_pages[blocks].sum()) > int(self.free_state[0])
+
+    def grow_pages(self, wanted=0):
+        """Adds free pages to the pool: at least `wanted`, else as many as it has (doubling)."""
+        have = self.dyn_head.shape[0]
+        added = max(wanted, have, 1)
+        head = np.full((have + added, 2, grid.REGION_CELLS), -1, np.int32)
+        head[:have] = self.dyn_head
+        free = int(self.free_state[0])
+        pool = np.empty(have + added, np.int64)
+        pool[:free] = self.page_free[:free]
+        pool[free:free + added] = np.arange(have + added - 1, have - 1, -1)
+        self.dyn_head, self.page_free = head, pool
+        self.free_state[0] = free + added
+
+    def _hold_pages(self, blocks):
+        while self.pages_short(blocks):
+            self.grow_pages()
 
     # ---- the region table ----------------------------------------------------------------
     def _regions(self, x, y):
@@ -177,6 +203,7 @@ class Space:
         """Stage's UnMap then Map of blocks (int array) at their body poses (rows x, y, cos,
         sin) in `layer`, each with its drawing's sequence number."""
         self.hold(blocks, poses)
+        self._hold_pages(blocks)
         grid.redraw(blocks, poses, seqs, layer, self.ppm, self.blk_pts, self.blk_pts_off,
                     self._vx, self._vy, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
                     self.rx0, self.ry0, self.nrx, self.nry, self.reg_count, self.reg_dyn,
@@ -188,6 +215,7 @@ class Space:
         tested, drawn back at the old ones on a collision; seqs: (2, blocks) drawing numbers.
         Returns grid.NO_HIT or what was hit."""
         self.hold(blocks, new_poses)
+        self._hold_pages(blocks)
         return grid.move(blocks, new_poses, old_poses, seqs, layer, self.ppm, self.blk_pts,
                          self.blk_pts_off, self._vx, self._vy, self.rc_start, self.rc_len,
                          self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx, self.nry,

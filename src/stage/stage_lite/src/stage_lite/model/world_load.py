@@ -252,8 +252,11 @@ def _extent(dynamic):
 
 def _assign_blocks(robots, dynamic):
     """Each robot's blocks in the grid (indices into dynamic), per model of its tree."""
+    by_model = {}
+    for k, d in enumerate(dynamic):
+        by_model.setdefault(id(d.model), []).append(k)
     for r in robots:
-        blocks = [(m, [k for k, d in enumerate(dynamic) if d.model is m]) for m in _tree(r.model)]
+        blocks = [(m, by_model.get(id(m), [])) for m in _tree(r.model)]
         r.blocks = [(m, ks) for m, ks in blocks if ks]
         r.block_ids = np.array([k for _, ks in r.blocks for k in ks], np.int64)
 

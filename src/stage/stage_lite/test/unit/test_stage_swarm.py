@@ -1,0 +1,70 @@
+"""Swarms: the generated swarm worlds, and the grid's page pool that grows with them."""
+import numpy as np
+import pytest
+from stage_lite import swarm_world
+from stage_lite.model import space as space_mod
+from stage_lite.model.world import load_world
+
+
+def test_places_fill_the_hospitals_strip_tile_by_tile():
+    one = swarm_world.places(1000)
+    assert one[0] == (-59.0, -15.0) and one[4] == (-59.0, -14.0)
+    assert one[5] == (-58.75, -15.0) and one[-1] == (-9.25, -14.0)
+    ten = swarm_world.places(10000)
+    assert len(ten) == len(set(ten)) == 10000
+    cols, rows = swarm_world.tiles_grid(10000)
+    assert cols * rows >= 10 and (cols, rows) == (2, 5)       # 280 m x 300 m: near square
+    # every robot inside the floor, clear of its border wall
+    w, h = cols * swarm_world.TILE_M[0], rows * swarm_world.TILE_M[1]
+    xs, ys = np.array(ten).T
+    assert np.abs(xs).max() < w / 2 - 1.0 and np.abs(ys).max() < h / 2 - 1.0
+
+
+def test_a_swarm_world_loads_with_its_robots_and_controllers(tmp_path):
+    path = swarm_world.write_worlds(str(tmp_path), (12,))[12]
+    w = load_world(path, stageros=False)
+    assert [r.model.token for r in w.robots] == ['r%d' % i for i in range(12)]
+    assert all(len(r.model.children[0].sensors) == 12 for r in w.robots)
+    start = w.state.pose[:, :2].copy()
+    for _ in range(20):
+        w.step()
+    moved = np.hypot(*(w.state.pose[:, :2] - start).T)
+    assert (moved > 0).sum() >= 10        # expand_swarm drives them (a few boxed in turn)
+
+    def spread(xy):
+        return np.hypot(*(xy - xy.mean(axis=0)).T).mean()
+    assert spread(w.state.pose[:, :2]) > spread(start) + 0.05     # apart from each other
+
+
+def test_no_swarm_without_a_robot(tmp_path):
+    with pytest.raises(ValueError, match='at least one robot'):
+        swarm_world.write_worlds(str(tmp_path), (0,))
+
+
+def run(path, steps):
+    w = load_world(path, stageros=False)
+    for _ in range(steps):
+        w.step()
+    return w
+
+
+def test_the_page_pool_grows_as_regions_fill_and_changes_nothing(tmp_path, monkeypatch):
+    path = swarm_world.write_worlds(str(tmp_path), (200,))[200]
+    monkeypatch.setattr(space_mod, 'PAGES_AT_START', 10 ** 9)     # the worst case at once
+    roomy = run(path, 40)
+    assert roomy.space.dyn_head.shape[0] == int(roomy.space.blk_pages.sum())
+    monkeypatch.setattr(space_mod, 'PAGES_AT_START', 1)
+    grown = run(path, 40)
+    assert np.array_equal(grown.state.pose, roomy.state.pose)
+    assert np.array_equal(grown.space.reg_dyncount, roomy.space.reg_dyncount)
+    sp = grown.space
+    pages = sp.dyn_head.shape[0]
+    in_use = int((sp.reg_dyn >= 0).sum())
+    # it grew from one page, by doubling: at most twice what it had to hold, and far below
+    # the worst case (every block in as many regions as its size allows, in both layers)
+    assert pages > 1 and in_use == pages - int(sp.free_state[0])
+    assert pages < int(sp.blk_pages.sum()) / 4
+    # free pages are those no region holds, each once
+    free = sp.page_free[:int(sp.free_state[0])]
+    assert len(set(free.tolist())) == len(free)
+    assert not set(free.tolist()) & set(sp.reg_dyn[sp.reg_dyn >= 0].tolist())
