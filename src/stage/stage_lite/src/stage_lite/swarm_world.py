@@ -41,7 +41,6 @@ model
   gui_move 0
   gui_outline 0
   obstacle_return 1
-  laser_return 1
   ranger_return 1
 %(blocks)s)
 

@@ -162,8 +162,7 @@ def _post_load(models, ppm, warnings, path):
                   [m.ranger_return for m in models], [m.obstacle_return for m in models])
     cells = _static_cells(models, moving, ppm)
     dynamic, coll = _moving_blocks(models, moving, ppm)
-    ray_zs = sorted({g.ray_origin(sensor)[2] for r in robots for g in r.ranger_models
-                     for sensor in g.sensors})
+    ray_zs = sorted({o[2] for r in robots for g in r.ranger_models for o in g.ray_origins()})
     space.build(cells, ray_zs, dynamic, coll, _extent(dynamic))
     _assign_blocks(robots, dynamic)
     _draw_at_start(space, robots)
@@ -262,14 +261,20 @@ def _assign_blocks(robots, dynamic):
 
 
 def _draw_at_start(space, robots):
-    """The load-time drawings, in model order, in both layers (sequence = the model's index)."""
+    """The load-time drawings, in model order, in both layers (sequence = the model's index):
+    each layer's in one batch (a cell's entries in each layer come in the same order)."""
+    blocks, poses, seqs = [], [], []
     for r in robots:
         for m, ks in r.blocks:
-            blocks = np.array(ks, np.int64)
-            poses = np.repeat([body_row(m)], len(ks), axis=0)
-            seqs = np.full(len(ks), m.index, np.int64)
-            for layer in (0, 1):
-                space.draw(blocks, poses, layer, seqs)
+            blocks.extend(ks)
+            poses.extend([body_row(m)] * len(ks))
+            seqs.extend([m.index] * len(ks))
+    if blocks:
+        blocks = np.array(blocks, np.int64)
+        poses = np.array(poses, np.float64)
+        seqs = np.array(seqs, np.int64)
+        for layer in (0, 1):
+            space.draw(blocks, poses, layer, seqs)
 
 
 def _tree(model):
