@@ -28,9 +28,7 @@ import sys
 import tempfile
 
 from stage_lite import swarm_world
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from stage_worlds_bench import PEER, run, timed_copy  # noqa: E402  (a bench beside this one)
+from stage_worlds_bench import PEER, run, timed_copy  # the bench beside this one
 
 RUNS = 3
 COUNTS = (1, 10, 100, 1000, 10000)

@@ -112,7 +112,7 @@ class RangerCasts:
         counts = np.array([s.samples for _, s in sensors], np.int64)
         beam_z = {}
         for g in {g for g, _ in sensors}:
-            beam_z.update((id(s), o[2]) for s, o in zip(g.sensors, g.ray_origins()))
+            beam_z.update((id(s), o[2]) for s, o in zip(g.sensors, g.ray_origins(), strict=True))
         return dict(
             offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
             sensor=np.repeat(np.arange(len(sensors), dtype=np.int64), counts),

@@ -112,7 +112,7 @@ class Worldfile:
                       % (name, len(p.values), len(fmt)))
         p.used = True
         out = []
-        for c, v in zip(fmt, p.values):
+        for c, v in zip(fmt, p.values, strict=False):     # values beyond fmt: not read
             if c == 'l':
                 out.append(c_atof(v) * self.unit_length)
             elif c == 'a':
