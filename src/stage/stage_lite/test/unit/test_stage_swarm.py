@@ -68,3 +68,28 @@ def test_the_page_pool_grows_as_regions_fill_and_changes_nothing(tmp_path, monke
     free = sp.page_free[:int(sp.free_state[0])]
     assert len(set(free.tolist())) == len(free)
     assert not set(free.tolist()) & set(sp.reg_dyn[sp.reg_dyn >= 0].tolist())
+
+
+def test_robots_started_inside_bodies_are_named_and_stay_put(tmp_path):
+    text = swarm_world.world_text(5)
+    head = text[:text.index('swarmbot( name "r0"')]
+    # a pile of two, one across the wall's inner edge, one inside the 0.2 m wall clear of
+    # its edges (Stage draws bodies by their outlines: it sees nothing there), one free
+    robots = [(0.0, 0.0), (0.0, 0.0), (-69.8, 0.0), (-69.9, 10.0), (5.0, 5.0)]
+    path = tmp_path / 'piled.world'
+    path.write_text(head + ''.join('swarmbot( name "r%d" pose [ %.3f %.3f 0 0 ] )\n' % (i, x, y)
+                                   for i, (x, y) in enumerate(robots)))
+    w = load_world(str(path), stageros=False)
+    assert w.warnings == ['%s: 3 of 5 robots start overlapping a wall or another body (the'
+                          ' first: r0, on r1); as in Stage, they cannot move until it has'
+                          ' moved away' % path]
+    start = w.state.pose.copy()
+    for _ in range(20):
+        w.step()
+    moved = np.abs(w.state.pose - start).max(axis=1) > 0
+    assert moved.tolist() == [False, False, False, True, True]
+
+
+def test_a_clear_swarm_loads_without_a_warning(tmp_path):
+    path = swarm_world.write_worlds(str(tmp_path), (50,))[50]
+    assert load_world(path, stageros=False).warnings == []

@@ -234,6 +234,14 @@ class Space:
                          self.page_free, self.blk_model, self.blk_zmin, self.blk_zmax,
                          self.model_root, self.model_obstacle)
 
+    def collides(self, blocks, layer):
+        """Block::TestCollision of the blocks as drawn in `layer` (grid.collides)."""
+        return grid.collides(blocks, layer, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
+                             self.rx0, self.ry0, self.nrx, self.nry, self.reg_static,
+                             self.reg_dyn, self.st_coll, self.blk_class, self.dyn_head,
+                             self.ent_block, self.ent_next, self.blk_model, self.blk_zmin,
+                             self.blk_zmax, self.model_root, self.model_obstacle)
+
     def next_seq(self):
         self.seq += 1
         return self.seq
