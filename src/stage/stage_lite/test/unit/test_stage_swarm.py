@@ -1,4 +1,6 @@
 """Swarms: the generated swarm worlds, and the grid's page pool that grows with them."""
+import math
+
 import numpy as np
 import pytest
 from stage_lite import swarm_world
@@ -68,3 +70,26 @@ def test_the_page_pool_grows_as_regions_fill_and_changes_nothing(tmp_path, monke
     free = sp.page_free[:int(sp.free_state[0])]
     assert len(set(free.tolist())) == len(free)
     assert not set(free.tolist()) & set(sp.reg_dyn[sp.reg_dyn >= 0].tolist())
+
+
+def test_the_ros_variant_gives_the_twelve_infrared_headings_as_one_sensor(tmp_path):
+    path = swarm_world.write_worlds(str(tmp_path), (3,), ros=True)[3]
+    assert path.endswith('swarm_ros_3.world')
+    text = open(path).read()
+    assert 'ctrl' not in text
+    # the same floor and robots as the Stage swarm: only the robot's definition differs
+    plain = swarm_world.world_text(3)
+    assert text[text.index('swarmbot( name'):] == plain[plain.index('swarmbot( name'):]
+    w = load_world(path, stageros=True)
+    assert len(w.robots) == 3
+    for robot in w.robots:
+        assert len(robot.rangers) == 1
+        r = robot.rangers[0]
+        assert r.samples == 12 and r.range_max == 2.0
+        lyaw = r.pose[3]
+        headings = [math.degrees(lyaw + r.angle_min + i * r.angle_increment) % 360.0
+                    for i in range(12)]
+        # beam i looks along IR sensor i's heading, 30 i degrees
+        assert headings == pytest.approx([30.0 * i for i in range(12)], abs=1e-9)
+    w.step()
+    assert all(np.all(r.rangers[0].ranges <= 2.0) for r in w.robots)

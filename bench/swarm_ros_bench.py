@@ -1,0 +1,177 @@
+"""The swarm through ROS: stageros on N swarmbots and one swarm_controller node driving them
+all, stage_lite's stageros against real stageros with the same node.
+
+    ./ws bench swarm_ros_bench [--peer STAGEROS] [--robots 100 1000] [--runs 3] [--window 10]
+
+Starts its own roscore on a free port. The worlds are stage_lite.swarm_world's ROS swarms
+(world_text(N, ros=True): Stage's benchmark swarmbot, its 12 infrared readings as one
+12-sample sensor, on the hospital's open floor). For each N, RUNS times, each simulator in
+turn (never two at once): /use_sim_time set, then stageros -g (flat out: the world says
+`speedup -1`, as real Stage runs headless) and `swarm_controller _robots:=N` (10 Hz of sim
+time) spawned together, as a launch file starts them:
+* start-up: from the spawn to the node's line that every robot's first scan has arrived;
+* real-time factor: simulated seconds (from /clock) per wall second over WINDOW_S wall s,
+  after WARMUP_S;
+* CPU of stageros and of the node: utime + stime over the same window, in cores (/proc);
+* peak RSS (VmHWM) of each at the end; the robots' spread (odom) the node reports last.
+Medians of the runs; a markdown table. STAGEROS: real stageros's executable (stage_ros 1.8.0
+on Stage 4.3.0, built as /work/shared/STAGE.md section 7 says), which needs libstage on
+LD_LIBRARY_PATH (--peer-lib, default: the executable's ../../../../install/lib if there).
+"""
+import argparse
+import contextlib
+import os
+import statistics
+import tempfile
+import threading
+import time
+
+import rosgraph
+import rospy
+from course_common.processes import peak_rss_mb
+from course_common.testing import cpu_ticks, spawn, wait_for
+from course_common.testing.master import Roscore
+from rosgraph_msgs.msg import Clock
+from stage_lite import swarm_world
+
+RUNS = 3
+COUNTS = (100, 1000)
+WARMUP_S = 3.0            # wall s after every first scan before the window
+WINDOW_S = 10.0           # wall s of each measurement
+START_DEADLINE_S = 300.0
+CLK_TCK = os.sysconf('SC_CLK_TCK')
+OURS = ['rosrun', 'stage_ros', 'stageros']
+NODE = ['rosrun', 'swarm', 'swarm_controller']
+FIRST_SCANS_LINE = "every robot's first scan received"
+
+
+def cpu_s(pid):
+    return cpu_ticks(pid) / CLK_TCK
+
+
+class Bench:
+    """Owns the roscore and this node's /clock subscriber."""
+
+    def __init__(self):
+        self.core = Roscore().start()
+        rospy.init_node('swarm_ros_bench', anonymous=True, disable_signals=True)
+        self._lock = threading.Lock()
+        self._clock = None
+        self.clock_sub = rospy.Subscriber('/clock', Clock, self._on_clock)
+
+    def _on_clock(self, msg):
+        with self._lock:
+            self._clock = (msg.clock.to_sec(), time.monotonic())
+
+    def clock(self):
+        with self._lock:
+            return self._clock
+
+    def run(self, command, world, robots, window_s, env=None):
+        """One run: dict of the figures."""
+        with self._lock:
+            self._clock = None
+        master = rosgraph.Master('/swarm_ros_bench')
+        for name in ('/stageros', '/swarm_controller'):
+            with contextlib.suppress(rosgraph.MasterError):
+                master.deleteParam(name)
+        master.setParam('/use_sim_time', True)
+        start = time.monotonic()
+        sim = spawn([*command, '-g', world], env=env, stop_timeout_s=20.0)
+        node = spawn([*NODE, '_robots:=%d' % robots], stop_timeout_s=20.0)
+        try:
+            wait_for(lambda: node.printed(FIRST_SCANS_LINE) or not sim.alive(),
+                     START_DEADLINE_S, 'every first scan at the node', alive=node.alive)
+            if not sim.alive():
+                raise RuntimeError('stageros ended:\n' + sim.tail())
+            start_s = time.monotonic() - start
+            time.sleep(WARMUP_S)
+            sim0, wall0 = wait_for(self.clock, START_DEADLINE_S, '/clock')
+            cpu0 = (cpu_s(sim.pid), cpu_s(node.pid))
+            time.sleep(window_s)
+            sim1, wall1 = self.clock()
+            cpu1 = (cpu_s(sim.pid), cpu_s(node.pid))
+            wall = wall1 - wall0
+            spreads = [line for line in node.lines() if 'spread' in line]
+            return dict(rtf=(sim1 - sim0) / wall, sim_cores=(cpu1[0] - cpu0[0]) / wall,
+                        node_cores=(cpu1[1] - cpu0[1]) / wall, sim_rss=peak_rss_mb(sim.pid),
+                        node_rss=peak_rss_mb(node.pid), start=start_s,
+                        spread=spreads[-1].split('spread ')[-1] if spreads else '-')
+        finally:
+            node.stop()
+            sim.stop()
+
+    def close(self):
+        self.clock_sub.unregister()
+        rospy.signal_shutdown('bench done')
+        self.core.stop()
+
+
+def median(runs):
+    out = {k: statistics.median(r[k] for r in runs) for k in runs[0] if k != 'spread'}
+    out['spread'] = runs[-1]['spread']
+    return out
+
+
+def peer_env(peer, lib):
+    lib = lib or os.path.normpath(os.path.join(os.path.dirname(peer), *['..'] * 4,
+                                               'install', 'lib'))
+    env = {}
+    if os.path.isdir(lib):
+        env['LD_LIBRARY_PATH'] = lib + ':' + os.environ.get('LD_LIBRARY_PATH', '')
+    return env
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('--peer', default='/work/scratch/peer/ws/devel/lib/stage_ros/stageros',
+                    help="real stageros's executable ('' to skip it)")
+    ap.add_argument('--peer-lib', help="real Stage's libraries (LD_LIBRARY_PATH)")
+    ap.add_argument('--robots', type=int, nargs='+', default=list(COUNTS))
+    ap.add_argument('--runs', type=int, default=RUNS)
+    ap.add_argument('--window', type=float, default=WINDOW_S, help='wall s measured')
+    ap.add_argument('--only', choices=('stage_lite', 'Stage'), help='one side only')
+    args = ap.parse_args(argv)
+    sides = [('stage_lite', OURS, None)]
+    if args.peer and os.access(args.peer, os.X_OK):
+        sides.append(('Stage', [args.peer], peer_env(args.peer, args.peer_lib)))
+    elif args.peer:
+        print('bench: no real stageros at %s: measuring stage_lite only' % args.peer)
+    if args.only:
+        sides = [s for s in sides if s[0] == args.only]
+    worlds = swarm_world.write_worlds(tempfile.mkdtemp(prefix='swarm_ros_bench_'),
+                                      tuple(args.robots), ros=True)
+    bench = Bench()
+    rows = []
+    try:
+        for n, path in worlds.items():
+            runs = {name: [] for name, _, _ in sides}
+            for k in range(args.runs):
+                for name, command, env in sides:
+                    print('bench: %d swarmbots, %s, run %d of %d' % (n, name, k + 1, args.runs),
+                          flush=True)
+                    r = bench.run(command, path, n, args.window, env)
+                    print('bench:   %s' % ', '.join('%s %s' % (key, (
+                        '%.3g' % v) if isinstance(v, float) else v) for key, v in r.items()),
+                        flush=True)
+                    runs[name].append(r)
+            rows.append((n, {name: median(r) for name, r in runs.items()}))
+    finally:
+        bench.close()
+    print()
+    print('| robots | simulator | real-time factor | stageros cores | node cores | stageros '
+          'peak RSS MB | node peak RSS MB | start to every first scan s | spread m |')
+    print('|---|---|---|---|---|---|---|---|---|')
+    for n, by_side in rows:
+        for name, m in by_side.items():
+            print('| %d | %s | %.2f | %.2f | %.2f | %.0f | %.0f | %.2f | %s |'
+                  % (n, name, m['rtf'], m['sim_cores'], m['node_cores'], m['sim_rss'],
+                     m['node_rss'], m['start'], m['spread']))
+        if len(by_side) == 2:
+            print('| %d | stage_lite / Stage | %.2f x | | | | | %.2f x | |'
+                  % (n, by_side['stage_lite']['rtf'] / by_side['Stage']['rtf'],
+                     by_side['stage_lite']['start'] / by_side['Stage']['start']))
+
+
+if __name__ == '__main__':
+    main()
