@@ -2,6 +2,7 @@
 all, stage_lite's stageros against real stageros with the same node.
 
     ./ws bench swarm_ros_bench [--peer STAGEROS] [--robots 100 1000] [--runs 3] [--window 10]
+                               [--without-node]
 
 Starts its own roscore on a free port. The worlds are stage_lite.swarm_world's ROS swarms
 (world_text(N, ros=True): Stage's benchmark swarmbot, its 12 infrared readings as one
@@ -14,6 +15,7 @@ time) spawned together, as a launch file starts them:
   after WARMUP_S;
 * CPU of stageros and of the node: utime + stime over the same window, in cores (/proc);
 * peak RSS (VmHWM) of each at the end; the robots' spread (odom) the node reports last.
+--without-node: stageros alone, nothing subscribed but /clock (start-up: to the first /clock).
 Medians of the runs; a markdown table. STAGEROS: real stageros's executable (stage_ros 1.8.0
 on Stage 4.3.0, built as /work/shared/STAGE.md section 7 says), which needs libstage on
 LD_LIBRARY_PATH (--peer-lib, default: the executable's ../../../../install/lib if there).
@@ -38,7 +40,7 @@ RUNS = 3
 COUNTS = (100, 1000)
 WARMUP_S = 3.0            # wall s after every first scan before the window
 WINDOW_S = 10.0           # wall s of each measurement
-START_DEADLINE_S = 300.0
+START_DEADLINE_S = 240.0
 CLK_TCK = os.sysconf('SC_CLK_TCK')
 OURS = ['rosrun', 'stage_ros', 'stageros']
 NODE = ['rosrun', 'swarm', 'swarm_controller']
@@ -67,7 +69,7 @@ class Bench:
         with self._lock:
             return self._clock
 
-    def run(self, command, world, robots, window_s, env=None):
+    def run(self, command, world, robots, window_s, env=None, with_node=True):
         """One run: dict of the figures."""
         with self._lock:
             self._clock = None
@@ -78,10 +80,14 @@ class Bench:
         master.setParam('/use_sim_time', True)
         start = time.monotonic()
         sim = spawn([*command, '-g', world], env=env, stop_timeout_s=20.0)
-        node = spawn([*NODE, '_robots:=%d' % robots], stop_timeout_s=20.0)
+        node = spawn([*NODE, '_robots:=%d' % robots] if with_node else ['sleep', '1000000'],
+                     stop_timeout_s=20.0)
         try:
-            wait_for(lambda: node.printed(FIRST_SCANS_LINE) or not sim.alive(),
-                     START_DEADLINE_S, 'every first scan at the node', alive=node.alive)
+            if with_node:
+                wait_for(lambda: node.printed(FIRST_SCANS_LINE) or not sim.alive(),
+                         START_DEADLINE_S, 'every first scan at the node', alive=node.alive)
+            else:
+                wait_for(lambda: self.clock() or not sim.alive(), START_DEADLINE_S, '/clock')
             if not sim.alive():
                 raise RuntimeError('stageros ended:\n' + sim.tail())
             start_s = time.monotonic() - start
@@ -131,6 +137,8 @@ def main(argv=None):
     ap.add_argument('--runs', type=int, default=RUNS)
     ap.add_argument('--window', type=float, default=WINDOW_S, help='wall s measured')
     ap.add_argument('--only', choices=('stage_lite', 'Stage'), help='one side only')
+    ap.add_argument('--without-node', action='store_true',
+                    help='stageros alone (nothing subscribed but /clock)')
     args = ap.parse_args(argv)
     sides = [('stage_lite', OURS, None)]
     if args.peer and os.access(args.peer, os.X_OK):
@@ -150,7 +158,7 @@ def main(argv=None):
                 for name, command, env in sides:
                     print('bench: %d swarmbots, %s, run %d of %d' % (n, name, k + 1, args.runs),
                           flush=True)
-                    r = bench.run(command, path, n, args.window, env)
+                    r = bench.run(command, path, n, args.window, env, not args.without_node)
                     print('bench:   %s' % ', '.join('%s %s' % (key, (
                         '%.3g' % v) if isinstance(v, float) else v) for key, v in r.items()),
                         flush=True)
@@ -159,6 +167,8 @@ def main(argv=None):
     finally:
         bench.close()
     print()
+    if args.without_node:
+        print('stageros alone (no swarm_controller; node columns: an idle placeholder)')
     print('| robots | simulator | real-time factor | stageros cores | node cores | stageros '
           'peak RSS MB | node peak RSS MB | start to every first scan s | spread m |')
     print('|---|---|---|---|---|---|---|---|---|')

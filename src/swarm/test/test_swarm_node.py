@@ -10,7 +10,6 @@ from course_common.testing import wait_for
 from course_common.testing.recorders import Recorder
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-
 from swarm.spread import spread_m
 
 ROBOTS = 10
@@ -44,7 +43,7 @@ class TestSwarm(unittest.TestCase):
         wait_for(lambda: spread_m(_xy(r.latest()) for r in self.truth)
                  > spread_m(start) + SPREAD_GAIN_M, SPREAD_DEADLINE_S,
                  'the swarm to spread out by %g m' % SPREAD_GAIN_M)
-        moved = [math.dist(a, _xy(r.latest())) for a, r in zip(start, self.truth)]
+        moved = [math.dist(a, _xy(r.latest())) for a, r in zip(start, self.truth, strict=True)]
         self.assertGreaterEqual(sum(m > MOVED_M for m in moved), MOST, moved)
         # commands are Stage's: 0.3 m/s or standing, turning by the law
         for r in self.cmd:

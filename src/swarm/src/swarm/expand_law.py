@@ -88,7 +88,7 @@ def command(plan, ranges):
     if len(ranges) != plan.count:
         raise ValueError('%d ranges for a scan of %d beams' % (len(ranges), plan.count))
     dx = dy = 0.0
-    for r, (c, s) in zip(ranges, plan.cos_sin):
+    for r, (c, s) in zip(ranges, plan.cos_sin, strict=True):
         dx += r * c
         dy += r * s
     if dx == 0 or dy == 0:

@@ -5,6 +5,7 @@ import time
 import rosgraph
 import rospy
 from course_common.param_loader import load_or_exit
+from course_common.publishers import unqueued_publisher
 from course_common.rospy_internals import shutdown_requested, throttled_topic_checks
 from course_common.schedule import BAD_INPUT_WARN_PERIOD_S
 from course_common.startup import init_node, loop_at_rate, quiet_at_shutdown
@@ -19,10 +20,8 @@ from .swarm_params import load_params
 
 #: Wall s between looks at the master while waiting for stageros's robots
 POLL_S = 0.5
-#: Wall s after the start by which every robot should have sent a scan; later: a WARN
-FIRST_SCAN_WARN_S = 30.0
-#: queue_size of every subscription and publisher: only the newest scan, odom and command
-#: matter to a law that reads the latest reading
+#: queue_size of every subscription: only the newest scan and odom matter to a law that reads
+#: the latest reading
 QUEUE_SIZE = 1
 
 
@@ -41,7 +40,9 @@ class SwarmController:
         ~rate_hz (float, 10, Hz of sim time): commands per second (stageros steps at 10).
         ~laser_yaw_deg (float, 165, degrees): the laser's yaw on the robot (the swarm
             world's ring: beam i looks along 30 i degrees).
-        ~discover_s (float, 1.0, wall s), ~report_period_s (float, 10, sim s): status lines.
+        ~discover_s (float, 1.0, wall s): how long the discovered count must hold.
+        ~report_period_s (float, 10, sim s): between status lines (spread of the swarm).
+        ~first_scan_warn_s (float, 30, wall s): then a WARN names the robots without a scan.
     """
 
     def __init__(self, count, params):
@@ -57,8 +58,10 @@ class SwarmController:
         self._stopped = False
         self._last_report = None
         self.topics = [robot_topics(i, count) for i in range(count)]
-        self._pubs = [rospy.Publisher(t.cmd_vel, Twist, queue_size=QUEUE_SIZE)
-                      for t in self.topics]
+        # no send queue (rospy's queue_size=None): a queue is a thread per connection, 1,000
+        # more threads at 1,000 robots; the tick writes each command itself, which is the same
+        # message on the wire
+        self._pubs = [unqueued_publisher(t.cmd_vel, Twist) for t in self.topics]
         # subscribed last: the callbacks may run at once
         self._subs = []
         for i, t in enumerate(self.topics):
@@ -102,7 +105,7 @@ class SwarmController:
         try:
             ranges = expand_law.clean_ranges(scan.ranges, scan.range_max)
         except ValueError as err:
-            self._warn(('ranges', index), 'swarm: %s: %s: stopping robot_%d', 
+            self._warn(('ranges', index), 'swarm: %s: %s: stopping robot_%d',
                        self.topics[index].scan, err, index)
             return Twist()
         out = expand_law.command(plan, ranges)
@@ -133,7 +136,7 @@ class SwarmController:
             self._all_scanned = True
             rospy.loginfo("swarm: every robot's first scan received: %d robots, %.2f s after "
                           'the node started', self.count, time.monotonic() - self._started)
-        elif time.monotonic() - self._started > FIRST_SCAN_WARN_S:
+        elif time.monotonic() - self._started > self.params.first_scan_warn_s:
             self._warn('first scans', 'swarm: no scan yet from %s: is stageros running a '
                        'world with that many robots?', first_few(waiting))
 

@@ -18,6 +18,7 @@ class SwarmParams:
     laser_yaw_rad: float = math.radians(RING_YAW_DEG)
     discover_s: float = 1.0         # wall s the robot count must stay the same to be taken
     report_period_s: float = 10.0   # sim s between status lines
+    first_scan_warn_s: float = 30.0  # wall s after the start: WARN about robots without a scan
 
 
 def load_params():
@@ -32,4 +33,7 @@ def load_params():
         discover_s=check_number('~discover_s', get_private('discover_s', 1.0), low=0.0,
                                 high=600.0),
         report_period_s=check_number('~report_period_s', get_private('report_period_s', 10.0),
-                                     low=0.0, high=1e6, low_open=True))
+                                     low=0.0, high=1e6, low_open=True),
+        first_scan_warn_s=check_number('~first_scan_warn_s',
+                                       get_private('first_scan_warn_s', 30.0), low=0.0,
+                                       high=1e6))

@@ -1,8 +1,8 @@
 """robot_topics: stageros's names and counting robots on the master; spread."""
 import pytest
+from swarm.spread import spread_m
 
 from swarm import robot_topics
-from swarm.spread import spread_m
 
 
 @pytest.mark.parametrize('index, count, scan, cmd', [

@@ -75,7 +75,8 @@ def test_the_page_pool_grows_as_regions_fill_and_changes_nothing(tmp_path, monke
 def test_the_ros_variant_gives_the_twelve_infrared_headings_as_one_sensor(tmp_path):
     path = swarm_world.write_worlds(str(tmp_path), (3,), ros=True)[3]
     assert path.endswith('swarm_ros_3.world')
-    text = open(path).read()
+    with open(path) as f:
+        text = f.read()
     assert 'ctrl' not in text
     # the same floor and robots as the Stage swarm: only the robot's definition differs
     plain = swarm_world.world_text(3)
