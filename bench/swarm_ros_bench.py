@@ -24,50 +24,30 @@ import argparse
 import contextlib
 import os
 import statistics
+import sys
 import tempfile
-import threading
 import time
 
 import rosgraph
-import rospy
 from course_common.processes import peak_rss_mb
-from course_common.testing import cpu_ticks, spawn, wait_for
-from course_common.testing.master import Roscore
-from rosgraph_msgs.msg import Clock
+from course_common.testing import spawn, wait_for
 from stage_lite import swarm_world
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import stage_bench  # bench/ is not a package: found through sys.path above
 
 RUNS = 3
 COUNTS = (100, 1000)
 WARMUP_S = 3.0            # wall s after every first scan before the window
 WINDOW_S = 10.0           # wall s of each measurement
 START_DEADLINE_S = 240.0
-CLK_TCK = os.sysconf('SC_CLK_TCK')
 OURS = ['rosrun', 'stage_ros', 'stageros']
 NODE = ['rosrun', 'swarm', 'swarm_controller']
 FIRST_SCANS_LINE = "every robot's first scan received"
 
 
-def cpu_s(pid):
-    return cpu_ticks(pid) / CLK_TCK
-
-
-class Bench:
-    """Owns the roscore and this node's /clock subscriber."""
-
-    def __init__(self):
-        self.core = Roscore().start()
-        rospy.init_node('swarm_ros_bench', anonymous=True, disable_signals=True)
-        self._lock = threading.Lock()
-        self._clock = None
-        self.clock_sub = rospy.Subscriber('/clock', Clock, self._on_clock)
-
-    def _on_clock(self, msg):
-        with self._lock:
-            self._clock = (msg.clock.to_sec(), time.monotonic())
-
-    def clock(self):
-        with self._lock:
-            return self._clock
+class Bench(stage_bench.Bench):
+    """stage_bench's roscore and /clock subscriber; a run is stageros and the node."""
 
     def run(self, command, world, robots, window_s, env=None, with_node=True):
         """One run: dict of the figures."""
@@ -93,10 +73,10 @@ class Bench:
             start_s = time.monotonic() - start
             time.sleep(WARMUP_S)
             sim0, wall0 = wait_for(self.clock, START_DEADLINE_S, '/clock')
-            cpu0 = (cpu_s(sim.pid), cpu_s(node.pid))
+            cpu0 = (stage_bench.cpu_s(sim.pid), stage_bench.cpu_s(node.pid))
             time.sleep(window_s)
             sim1, wall1 = self.clock()
-            cpu1 = (cpu_s(sim.pid), cpu_s(node.pid))
+            cpu1 = (stage_bench.cpu_s(sim.pid), stage_bench.cpu_s(node.pid))
             wall = wall1 - wall0
             spreads = [line for line in node.lines() if 'spread' in line]
             return dict(rtf=(sim1 - sim0) / wall, sim_cores=(cpu1[0] - cpu0[0]) / wall,
@@ -107,16 +87,26 @@ class Bench:
             node.stop()
             sim.stop()
 
-    def close(self):
-        self.clock_sub.unregister()
-        rospy.signal_shutdown('bench done')
-        self.core.stop()
-
 
 def median(runs):
     out = {k: statistics.median(r[k] for r in runs) for k in runs[0] if k != 'spread'}
     out['spread'] = runs[-1]['spread']
     return out
+
+
+def measure(bench, sides, path, robots, args):
+    """{simulator: median figures} of args.runs runs of each, one simulator at a time."""
+    runs = {name: [] for name, _, _ in sides}
+    for k in range(args.runs):
+        for name, command, env in sides:
+            print('bench: %d swarmbots, %s, run %d of %d' % (robots, name, k + 1, args.runs),
+                  flush=True)
+            r = bench.run(command, path, robots, args.window, env, not args.without_node)
+            print('bench:   ' + ', '.join('%s %s' % (key, '%.3g' % v if isinstance(v, float)
+                                                     else v) for key, v in r.items()),
+                  flush=True)
+            runs[name].append(r)
+    return {name: median(r) for name, r in runs.items()}
 
 
 def peer_env(peer, lib):
@@ -150,20 +140,8 @@ def main(argv=None):
     worlds = swarm_world.write_worlds(tempfile.mkdtemp(prefix='swarm_ros_bench_'),
                                       tuple(args.robots), ros=True)
     bench = Bench()
-    rows = []
     try:
-        for n, path in worlds.items():
-            runs = {name: [] for name, _, _ in sides}
-            for k in range(args.runs):
-                for name, command, env in sides:
-                    print('bench: %d swarmbots, %s, run %d of %d' % (n, name, k + 1, args.runs),
-                          flush=True)
-                    r = bench.run(command, path, n, args.window, env, not args.without_node)
-                    print('bench:   %s' % ', '.join('%s %s' % (key, (
-                        '%.3g' % v) if isinstance(v, float) else v) for key, v in r.items()),
-                        flush=True)
-                    runs[name].append(r)
-            rows.append((n, {name: median(r) for name, r in runs.items()}))
+        rows = [(n, measure(bench, sides, path, n, args)) for n, path in worlds.items()]
     finally:
         bench.close()
     print()
