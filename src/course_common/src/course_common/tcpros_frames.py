@@ -9,7 +9,22 @@ a frame that finds the buffers full is dropped whole, and a frame the buffers to
 of (a 1081-beam scan is 8.7 kB) is finished before any later frame is sent, so the byte
 stream stays aligned and the subscriber, once it reads again, receives whole messages.
 """
+import ctypes
+import errno
+import os
 import socket
+
+#: libc's send(2) through ctypes.PyDLL, which keeps the GIL during the call (CDLL and
+#: socket.send release it). A non-blocking send returns in microseconds, and a step thread
+#: that releases the GIL for each of its thousands of sends waits for it again behind every
+#: thread that wants it: stageros's cmd_vel receivers, one per robot.
+_LIBC = ctypes.PyDLL(None, use_errno=True)
+_send = _LIBC.send
+_send.argtypes = (ctypes.c_int, ctypes.c_char_p, ctypes.c_size_t, ctypes.c_int)
+_send.restype = ctypes.c_ssize_t
+#: the buffers are full (or a signal came): nothing sent
+_NOTHING_SENT = frozenset((errno.EAGAIN, errno.EWOULDBLOCK, errno.EINTR))
+_FLAGS = socket.MSG_DONTWAIT | getattr(socket, 'MSG_NOSIGNAL', 0)
 
 
 class FrameStream:
@@ -50,7 +65,21 @@ class FrameStream:
 
     @staticmethod
     def _send_now(sock, data):
+        if isinstance(sock, socket.socket):
+            return send_holding_the_gil(sock.fileno(), bytes(data))
         try:
             return sock.send(data, socket.MSG_DONTWAIT)
         except (BlockingIOError, InterruptedError):
             return 0
+
+
+def send_holding_the_gil(fd, data):
+    """send(fd, data, MSG_DONTWAIT) without releasing the GIL: bytes sent, 0 when the buffers
+    are full; OSError (EPIPE, ECONNRESET, EBADF, ...) as socket.send raises it."""
+    sent = _send(fd, data, len(data), _FLAGS)
+    if sent >= 0:
+        return sent
+    err = ctypes.get_errno()
+    if err in _NOTHING_SENT:
+        return 0
+    raise OSError(err, os.strerror(err))
