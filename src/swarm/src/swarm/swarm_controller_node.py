@@ -29,10 +29,11 @@ class SwarmController:
     """Drives robots 0..N-1 of stageros by Stage's expand_swarm law, from one node.
 
     Subscribes: /robot_<i>/base_scan (sensor_msgs/LaserScan), /robot_<i>/odom
-        (nav_msgs/Odometry), for each robot i (with one robot: base_scan, odom, relative).
-    Publishes: /robot_<i>/cmd_vel (geometry_msgs/Twist) for each robot with a scan, at
-        ~rate_hz of sim time (/use_sim_time: stageros's clock); one zero Twist each at
-        shutdown. A scan with a NaN or negative range: a zero Twist (and a throttled WARN).
+        (nav_msgs/Odometry), for each robot i (with one robot: base_scan, odom, relative);
+        queue 1 each: one rospy thread per connection, 2 per robot.
+    Publishes: /robot_<i>/cmd_vel (geometry_msgs/Twist, no send queue) for each robot with
+        a scan, at ~rate_hz of sim time (/use_sim_time: stageros's clock); one zero Twist
+        each at shutdown. A scan with a NaN or negative range: a zero Twist (and a throttled WARN).
     Services: none.
     Parameters (private):
         ~robots (int, 0): how many robots; 0: as many as stageros publishes scans for (the
