@@ -43,12 +43,32 @@ def span_of(n):
     return SPANS[min((k for k in SPANS if k >= n), default=max(SPANS))]
 
 
+#: runs of a world in a row before the bench gives up on it (the real Stage 4.3.0 now and then
+#: dies of a segmentation fault in its worker threads: its run is made again, and counted)
+ATTEMPTS = 3
+CRASHES = []
+
+
+def run_again_if_it_crashes(command, world, env):
+    """run(), made again when the simulator dies (up to ATTEMPTS), each death counted."""
+    for attempt in range(ATTEMPTS):
+        try:
+            return run(command, world, env)
+        except SystemExit as failed:
+            if attempt == ATTEMPTS - 1:
+                raise
+            CRASHES.append('%s on %s: %s' % (command[0], os.path.basename(world),
+                                             str(failed).splitlines()[0]))
+            print('bench: %s, made again' % CRASHES[-1], flush=True)
+    return None
+
+
 def measure(command, world_dir, n, env):
     """One pair of runs: (wall s per simulated s, cores, start-up s, peak RSS MB)."""
     t1, t2 = span_of(n)
-    path = os.path.join(world_dir, 'swarm_%d.world' % n)
-    wall0, cpu0, _ = run(command, timed_copy(world_dir, os.path.basename(path), t1), env)
-    wall1, cpu1, rss = run(command, timed_copy(world_dir, os.path.basename(path), t2), env)
+    path = os.path.basename(os.path.join(world_dir, 'swarm_%d.world' % n))
+    wall0, cpu0, _ = run_again_if_it_crashes(command, timed_copy(world_dir, path, t1), env)
+    wall1, cpu1, rss = run_again_if_it_crashes(command, timed_copy(world_dir, path, t2), env)
     rate = max(wall1 - wall0, 1e-3) / (t2 - t1)
     return rate, (cpu1 - cpu0) / max(wall1 - wall0, 1e-3), max(wall0 - t1 * rate, 0.0), rss
 
@@ -101,6 +121,9 @@ def main(argv=None):
                 '' if side == 'Stage' or real is None else '**%.2f x**' % (real[0] / rate),
                 cores, start, rss, '' if n == 1 else '%.1f' % per_robot,
                 n / VAUGHAN_ROBOTS_AT_REAL_TIME * 1e3))
+    if CRASHES:
+        print('\nRuns made again after the simulator died (%d): %s'
+              % (len(CRASHES), '; '.join(CRASHES)))
 
 
 if __name__ == '__main__':
