@@ -57,8 +57,10 @@ def run_again_if_it_crashes(command, world, env):
         except SystemExit as failed:
             if attempt == ATTEMPTS - 1:
                 raise
-            CRASHES.append('%s on %s: %s' % (command[0], os.path.basename(world),
-                                             str(failed).splitlines()[0]))
+            exit_line = str(failed).splitlines()[0]
+            CRASHES.append('%s on %s (%s)' % (os.path.basename(command[0]),
+                                              os.path.basename(world),
+                                              exit_line[exit_line.rfind('(') + 1:].rstrip('):')))
             print('bench: %s, made again' % CRASHES[-1], flush=True)
     return None
 
