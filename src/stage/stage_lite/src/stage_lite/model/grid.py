@@ -87,34 +87,32 @@ def region_index(gx, gy, rx0, ry0, nrx, nry):
 
 
 # ---- moving bodies: Stage's Map / UnMap / TestCollision ----------------------------------
-# Each cell a block's outline is drawn into (its slot k in rc_x/rc_y, layer L) owns one
-# entry, number L * slots + k (entries: 2 * slots, Space's): Map takes no free entry and
-# UnMap finds its own without comparing blocks. An entry goes in at the head of its cell's
-# list: the order within a cell is never read (a ray takes the entry drawn first by its
-# sequence number, the collision test only whether any entry is in the way, the energy
-# model a set).
 
 @njit(cache=True)
 def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
-                reg_dyn, reg_dyncount, dyn_head, ent_next, free_state, page_free):
-    """Block::UnMap: out of every cell it was drawn into (each drawing of a cell its own
-    entry), one count off the region per drawing."""
+                reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, ent_free,
+                page_free):
+    """Block::UnMap: out of every cell it was drawn into (all its entries in each), one
+    count off the region per drawing."""
     s = rc_start[b]
-    base = layer * rc_x.shape[1]
-    for k in range(s, s + rc_len[layer, b]):
-        gx = rc_x[layer, k]
-        gy = rc_y[layer, k]
-        reg = region_index(gx, gy, rx0, ry0, nrx, nry)
+    for k in range(rc_len[layer, b]):
+        reg = region_index(rc_x[layer, s + k], rc_y[layer, s + k], rx0, ry0, nrx, nry)
         page = reg_dyn[reg]
-        cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
-        mine = base + k
+        cell = (rc_y[layer, s + k] & (REGION - 1)) * REGION + (rc_x[layer, s + k] & (REGION - 1))
+        prev = -1
         e = dyn_head[page, layer, cell]
-        if e == mine:
-            dyn_head[page, layer, cell] = ent_next[e]
-        else:
-            while ent_next[e] != mine:
-                e = ent_next[e]
-            ent_next[e] = ent_next[mine]
+        while e >= 0:
+            nxt = ent_next[e]
+            if ent_block[e] == b:
+                if prev < 0:
+                    dyn_head[page, layer, cell] = nxt
+                else:
+                    ent_next[prev] = nxt
+                ent_next[e] = ent_free[0]
+                ent_free[0] = e
+            else:
+                prev = e
+            e = nxt
         reg_count[reg] -= 1
         reg_dyncount[reg] -= 1
         if reg_dyncount[reg] == 0:
@@ -125,33 +123,14 @@ def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_
 
 
 @njit(cache=True)
-def map_block(b, layer, vx, vy, seq, test, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
-              reg_count, reg_static, reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head,
-              ent_block, ent_next, ent_seq, free_state, page_free, blk_model, blk_zmin,
-              blk_zmax, model_root, model_obstacle):
-    """Block::Map: the block's outline cells at the given pixel vertices, an entry each.
-    The region table must hold them (World keeps it so). With `test`, each cell is also
-    tested as Block::TestCollision tests it (the robot's own blocks never count, so a cell
-    tested as it is drawn reads what the test after the whole robot is drawn reads):
-    returns collides()'s kind of answer, NO_HIT without `test`."""
+def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
+              reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, ent_seq,
+              free_state, ent_free, page_free):
+    """Block::Map: the block's outline cells at the given pixel vertices, each an entry at
+    the end of its cell's list. The region table must hold them (World keeps it so)."""
     s = rc_start[b]
     end = poly_cells(vx, vy, rc_x[layer], rc_y[layer], s)
     rc_len[layer, b] = end - s
-    base = layer * rc_x.shape[1]
-    hit = NO_HIT
-    m = root = -1
-    bit = np.uint32(0)
-    zmin = zmax = 0.0
-    if test:        # (without it, the tables of the test may be empty: not read)
-        m = blk_model[b]
-        if not model_obstacle[m]:
-            test = False
-        elif blk_zmin[b] < 0.0:
-            hit = GROUND
-        bit = np.uint32(1) << np.uint32(blk_class[b])
-        zmin = blk_zmin[b]
-        zmax = blk_zmax[b]
-        root = model_root[m]
     for k in range(s, end):
         gx = rc_x[layer, k]
         gy = rc_y[layer, k]
@@ -164,28 +143,56 @@ def map_block(b, layer, vx, vy, seq, test, rc_start, rc_len, rc_x, rc_y, rx0, ry
             dyn_head[page, 1, :] = -1
             reg_dyn[reg] = page
         cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
-        if test and hit == NO_HIT:
+        e = ent_free[0]
+        ent_free[0] = ent_next[e]
+        ent_block[e] = b
+        ent_seq[e] = seq
+        ent_next[e] = -1
+        tail = dyn_head[page, layer, cell]
+        if tail < 0:
+            dyn_head[page, layer, cell] = e
+        else:
+            while ent_next[tail] >= 0:
+                tail = ent_next[tail]
+            ent_next[tail] = e
+        reg_count[reg] += 1
+        reg_dyncount[reg] += 1
+
+
+@njit(cache=True)
+def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_static,
+             reg_dyn, st_coll, blk_class, dyn_head, ent_block, ent_next, blk_model, blk_zmin,
+             blk_zmax, model_root, model_obstacle):
+    """Block::TestCollision over `blocks` (a robot and what it carries, drawn in `layer`):
+    the moving model hit, STATIC, GROUND for a block below the floor, or NO_HIT."""
+    for i in range(blocks.shape[0]):
+        b = blocks[i]
+        m = blk_model[b]
+        if not model_obstacle[m]:
+            continue
+        if blk_zmin[b] < 0.0:
+            return GROUND
+        bit = np.uint32(1) << np.uint32(blk_class[b])
+        s = rc_start[b]
+        for k in range(rc_len[layer, b]):
+            gx = rc_x[layer, s + k]
+            gy = rc_y[layer, s + k]
+            reg = region_index(gx, gy, rx0, ry0, nrx, nry)
+            cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
             spage = reg_static[reg]
             if spage >= 0 and (st_coll[spage, cell] & bit) != 0:
-                hit = STATIC
-            else:
+                return STATIC
+            page = reg_dyn[reg]
+            if page >= 0:
                 e = dyn_head[page, layer, cell]
                 while e >= 0:
                     b2 = ent_block[e]
                     m2 = blk_model[b2]
-                    if (m2 != m and model_obstacle[m2] and model_root[m2] != root
-                            and blk_zmin[b2] <= zmax and blk_zmax[b2] >= zmin):
-                        hit = m2
-                        break
+                    if (m2 != m and model_obstacle[m2] and model_root[m2] != model_root[m]
+                            and blk_zmin[b2] <= blk_zmax[b] and blk_zmax[b2] >= blk_zmin[b]):
+                        return m2
                     e = ent_next[e]
-        e = base + k
-        ent_block[e] = b
-        ent_seq[e] = seq
-        ent_next[e] = dyn_head[page, layer, cell]
-        dyn_head[page, layer, cell] = e
-        reg_count[reg] += 1
-        reg_dyncount[reg] += 1
-    return hit
+    return NO_HIT
 
 
 @njit(cache=True)
@@ -193,25 +200,7 @@ def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_l
            rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block,
            ent_next, ent_seq, free_state, ent_free, page_free):
     """UnMap then Map of each block at its model's body pose (x, y, cos, sin): Stage's
-    LocalToPixels, floor((x + px cos - py sin) * ppm), in Stage's order of operations.
-    (ent_free: unused, entries being the cells' own.)"""
-    none = np.zeros(0, np.int64)
-    redraw_tested(blocks, poses, seqs, layer, False, ppm, pts, pts_off, vx, vy, rc_start,
-                  rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyn,
-                  reg_dyncount, np.zeros((0, REGION_CELLS), np.uint32), none, dyn_head,
-                  ent_block, ent_next, ent_seq, free_state, page_free, none,
-                  np.zeros(0), np.zeros(0), none, np.zeros(0, np.bool_))
-
-
-@njit(cache=True)
-def redraw_tested(blocks, poses, seqs, layer, test, ppm, pts, pts_off, vx, vy, rc_start,
-                  rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-                  reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
-                  free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
-                  model_obstacle):
-    """redraw(), each block's new cells tested as they are drawn (map_block's `test`):
-    the first hit found, or NO_HIT."""
-    hit = NO_HIT
+    LocalToPixels, floor((x + px cos - py sin) * ppm), in Stage's order of operations."""
     for i in range(blocks.shape[0]):
         b = blocks[i]
         gx, gy, cosa, sina = poses[i, 0], poses[i, 1], poses[i, 2], poses[i, 3]
@@ -222,16 +211,11 @@ def redraw_tested(blocks, poses, seqs, layer, test, ppm, pts, pts_off, vx, vy, r
             vx[j] = math.floor((gx + px * cosa - py * sina) * ppm)
             vy[j] = math.floor((gy + px * sina + py * cosa) * ppm)
         unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
-                    reg_dyn, reg_dyncount, dyn_head, ent_next, free_state, page_free)
-        still = test and hit == NO_HIT
-        h = map_block(b, layer, vx[:n], vy[:n], seqs[i], still, rc_start,
-                      rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-                      reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next,
-                      ent_seq, free_state, page_free, blk_model, blk_zmin, blk_zmax,
-                      model_root, model_obstacle)
-        if hit == NO_HIT:
-            hit = h
-    return hit
+                    reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, ent_free,
+                    page_free)
+        map_block(b, layer, vx[:n], vy[:n], seqs[i], rc_start, rc_len, rc_x, rc_y, rx0, ry0,
+                  nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next,
+                  ent_seq, free_state, ent_free, page_free)
 
 
 @njit(cache=True)
@@ -240,19 +224,16 @@ def move(blocks, new_poses, old_poses, seqs, layer, ppm, pts, pts_off, vx, vy, r
          st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free,
          page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """ModelPosition::Move's grid work: the robot's blocks drawn in `layer` at their new
-    poses, tested (Block::TestCollision: a static obstacle, the ground, or a moving model in
-    the way, as drawn in that layer); on a collision drawn back at the old ones (seqs: two
-    rows, the drawing numbers of each). Returns NO_HIT or one thing in the way (which one
-    is not Stage's: only whether there is one is read). ent_free: unused."""
-    hit = redraw_tested(blocks, new_poses, seqs[0], layer, True, ppm, pts, pts_off, vx, vy,
-                        rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
-                        reg_static, reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head,
-                        ent_block, ent_next, ent_seq, free_state, page_free, blk_model,
-                        blk_zmin, blk_zmax, model_root, model_obstacle)
+    poses, tested; on a collision drawn back at the old ones (seqs: two rows, the drawing
+    numbers of each). Returns collides()'s answer."""
+    redraw(blocks, new_poses, seqs[0], layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len,
+           rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head,
+           ent_block, ent_next, ent_seq, free_state, ent_free, page_free)
+    hit = collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
+                   reg_static, reg_dyn, st_coll, blk_class, dyn_head, ent_block, ent_next,
+                   blk_model, blk_zmin, blk_zmax, model_root, model_obstacle)
     if hit != NO_HIT:
-        redraw_tested(blocks, old_poses, seqs[1], layer, False, ppm, pts, pts_off, vx, vy,
-                      rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
-                      reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block,
-                      ent_next, ent_seq, free_state, page_free, blk_model, blk_zmin,
-                      blk_zmax, model_root, model_obstacle)
+        redraw(blocks, old_poses, seqs[1], layer, ppm, pts, pts_off, vx, vy, rc_start,
+               rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
+               dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free, page_free)
     return hit
