@@ -12,10 +12,12 @@ import pytest
 import rospy
 import rospy.core
 import rospy.impl.paramserver
+import rospy.impl.registration
 import rospy.impl.tcpros_base
 import rospy.names
 import rospy.topics
 from course_common.testing import pin
+from rospy.impl.registration import get_topic_manager
 
 from course_common import rospy_internals
 
@@ -134,3 +136,35 @@ def test_connection_header_is_set_on_received_messages():
     source = inspect.getsource(rospy.impl.tcpros_base)
     pin('._connection_header = ' in source, 'message._connection_header',
         'is set by rospy.impl.tcpros_base on every received message')
+
+
+def test_topic_checks_are_the_registration_threads_check_all():
+    manager = get_topic_manager()
+    pin(callable(getattr(manager, 'check_all', None)), '_TopicManager.check_all', 'exists')
+    for attribute in ('lock', 'pubs', 'subs'):
+        pin(hasattr(manager, attribute), '_TopicManager.%s' % attribute, 'exists')
+    pin(callable(getattr(rospy.topics._TopicImpl, 'check', None)), '_TopicImpl.check', 'exists')
+    source = inspect.getsource(rospy.impl.registration.RegManager.run)
+    pin('get_topic_manager().check_all()' in source, 'RegManager.run',
+        'calls get_topic_manager().check_all() (looked up at each call)')
+
+
+class _Impl:
+    def __init__(self, connected):
+        self.connections = [object()] if connected else []
+        self.checked = 0
+
+    def check(self):
+        self.checked += 1
+
+
+def test_throttled_topic_checks_check_connected_topics_at_most_once_a_period(monkeypatch):
+    manager = get_topic_manager()
+    connected, idle = _Impl(True), _Impl(False)
+    monkeypatch.setattr(manager, 'pubs', {'/a': connected, '/b': idle})
+    monkeypatch.setattr(manager, 'subs', {})
+    monkeypatch.setattr(manager, 'check_all', manager.check_all)   # undone after the test
+    rospy_internals.throttled_topic_checks(period_s=3600.0)
+    manager.check_all()
+    manager.check_all()          # within the period: nothing
+    assert (connected.checked, idle.checked) == (1, 0)

@@ -1,12 +1,14 @@
 """Stage's controllers: found and started as Stage does, driving as their C++ rules say, and
 every way a controller can be wrong reported on the world file's line."""
 import math
+import os
 import sys
 
 import numpy as np
 import pytest
 from stage_lite.controllers import wander
 from stage_lite.controllers._expand import Law, steer
+from stage_lite.model.bodies import Block, rasterize
 from stage_lite.model.glibc_random import Random
 from stage_lite.model.noise import RangerNoise
 from stage_lite.model.world import WorldError, load_world
@@ -322,3 +324,26 @@ def test_stages_model_order_sets_the_controllers_start_and_the_moves(tmp_path, m
         return started, stalls
     assert run(None) == (['p', 'q'], [False, True])         # file order
     assert run(['q', 'p']) == (['q', 'p'], [True, False])     # Stage's, as given
+
+
+def test_rasterize_prints_each_bodys_outline_as_the_real_stage_does(capsys):
+    """Three bodies (an octagon scaled to its size, the default box turned 30 degrees, a
+    triangle and a sliver in one body): the real Stage's output, line for line, with its
+    quirks (the raster's far edges fall outside it; an edge that starts outside stays on
+    its row)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    load_world(os.path.join(here, '..', 'worlds', 'rasterize.world'), stageros=False)
+    with open(os.path.join(here, '..', 'golden', 'data', 'rasterize.txt')) as f:
+        real = f.read().splitlines()
+    ours = [line for line in capsys.readouterr().out.splitlines() if line]
+    assert ours == real
+    assert len(real) == 3 * 22
+
+
+def test_a_raster_skips_what_falls_outside_it():
+
+    square = Block([(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)], 0.0, 1.0)
+    data = rasterize([square], (2.0, 2.0, 1.0), 4, 4, 0.5, 0.5)
+    rows = [''.join('O' if v else '.' for v in data[y * 4:(y + 1) * 4]) for y in range(4)]
+    # the right and top edges lie on x = 4 and y = 4 cells: outside a 4 x 4 raster
+    assert rows == ['OOOO', 'O...', 'O...', 'O...']

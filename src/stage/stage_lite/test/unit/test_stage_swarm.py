@@ -1,9 +1,12 @@
 """Swarms: the generated swarm worlds, and the grid's page pool that grows with them."""
+import math
+
 import numpy as np
 import pytest
 from stage_lite import swarm_world
 from stage_lite.model import space as space_mod
 from stage_lite.model.world import load_world
+from stage_lite.node.swarm_stageros import parse
 
 
 def test_places_fill_the_hospitals_strip_tile_by_tile():
@@ -68,3 +71,62 @@ def test_the_page_pool_grows_as_regions_fill_and_changes_nothing(tmp_path, monke
     free = sp.page_free[:int(sp.free_state[0])]
     assert len(set(free.tolist())) == len(free)
     assert not set(free.tolist()) & set(sp.reg_dyn[sp.reg_dyn >= 0].tolist())
+
+
+def test_robots_started_inside_bodies_are_named_and_stay_put(tmp_path):
+    text = swarm_world.world_text(5)
+    head = text[:text.index('swarmbot( name "r0"')]
+    # a pile of two, one across the wall's inner edge, one inside the 0.2 m wall clear of
+    # its edges (Stage draws bodies by their outlines: it sees nothing there), one free
+    robots = [(0.0, 0.0), (0.0, 0.0), (-69.8, 0.0), (-69.9, 10.0), (5.0, 5.0)]
+    path = tmp_path / 'piled.world'
+    path.write_text(head + ''.join('swarmbot( name "r%d" pose [ %.3f %.3f 0 0 ] )\n' % (i, x, y)
+                                   for i, (x, y) in enumerate(robots)))
+    w = load_world(str(path), stageros=False)
+    assert w.warnings == ['%s: 3 of 5 robots start overlapping a wall or another body (the'
+                          ' first: r0, on r1); as in Stage, they cannot move until it has'
+                          ' moved away' % path]
+    start = w.state.pose.copy()
+    for _ in range(20):
+        w.step()
+    moved = np.abs(w.state.pose - start).max(axis=1) > 0
+    assert moved.tolist() == [False, False, False, True, True]
+
+
+def test_a_clear_swarm_loads_without_a_warning(tmp_path):
+    path = swarm_world.write_worlds(str(tmp_path), (50,))[50]
+    assert load_world(path, stageros=False).warnings == []
+
+
+def test_the_ros_variant_gives_the_twelve_infrared_headings_as_one_sensor(tmp_path):
+    path = swarm_world.write_worlds(str(tmp_path), (3,), ros=True)[3]
+    assert path.endswith('swarm_ros_3.world')
+    with open(path) as f:
+        text = f.read()
+    assert 'ctrl' not in text
+    # the same floor and robots as the Stage swarm: only the robot's definition differs
+    plain = swarm_world.world_text(3)
+    assert text[text.index('swarmbot( name'):] == plain[plain.index('swarmbot( name'):]
+    w = load_world(path, stageros=True)
+    assert len(w.robots) == 3
+    for robot in w.robots:
+        assert len(robot.rangers) == 1
+        r = robot.rangers[0]
+        assert r.samples == 12 and r.range_max == 2.0
+        lyaw = r.pose[3]
+        headings = [math.degrees(lyaw + r.angle_min + i * r.angle_increment) % 360.0
+                    for i in range(12)]
+        # beam i looks along IR sensor i's heading, 30 i degrees
+        assert headings == pytest.approx([30.0 * i for i in range(12)], abs=1e-9)
+    w.step()
+    assert all(np.all(r.rangers[0].ranges <= 2.0) for r in w.robots)
+
+
+def test_swarm_stageros_arguments():
+    assert parse(['-g', '100', '__name:=stageros']) == (
+        ['-g'], 100, ['rosrun', 'stage_ros', 'stageros'], ['__name:=stageros'])
+    assert parse(['--stageros', '/x/stageros', '5'])[2] == ['/x/stageros']
+    for bad, error in ((['ten'], 'not a robot count'), (['0'], 'at least one'),
+                       (['-g'], 'how many robots')):
+        with pytest.raises(ValueError, match=error):
+            parse(bad)

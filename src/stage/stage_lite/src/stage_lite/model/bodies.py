@@ -81,3 +81,37 @@ def canonical_winding(pts):
             d -= 2 * math.pi
         total += d
     return pts if total > 0 else pts[::-1]
+
+
+def rasterize(blocks, size, width, height, cell_w, cell_h):
+    """Model::Rasterize (Block::Rasterize of each block): the outline of every block drawn
+    into a width x height raster of cells cell_w x cell_h metres from the model's bottom left
+    corner, an edge at a time from its first point, stepping along its longer axis; a
+    bytearray, row y from the bottom, 1 where an outline passes. A cell outside the raster
+    is skipped as Stage skips it: with `continue`, past the step of y along the edge, so
+    an edge that starts outside stays on the row it started on (and outside)."""
+    data = bytearray(width * height)
+    for b in blocks:
+        pts = b.pts.tolist()
+        for i, (x1, y1) in enumerate(pts):
+            x2, y2 = pts[(i + 1) % len(pts)]
+            ax = math.floor((x1 + size[0] / 2.0) / cell_w)
+            ay = math.floor((y1 + size[1] / 2.0) / cell_h)
+            bx = math.floor((x2 + size[0] / 2.0) / cell_w)
+            by = math.floor((y2 + size[1] / 2.0) / cell_h)
+            steep = abs(by - ay) > abs(bx - ax)
+            if steep:
+                ax, ay, bx, by = ay, ax, by, bx
+            if ax > bx:
+                ax, bx, ay, by = bx, ax, by, ay
+            # C's double division; a one-cell edge (0/0) draws its cell once
+            dydx = (by - ay) / (bx - ax) if bx != ax else math.nan
+            y = float(ay)
+            across, along = (height, width) if steep else (width, height)
+            for x in range(ax, bx + 1):
+                fy = math.floor(y) if not math.isnan(y) else None
+                if fy is None or not (0 <= x < across and 0 <= fy < along):
+                    continue
+                data[fy + x * width if steep else x + fy * width] = 1
+                y += dydx
+    return data

@@ -77,9 +77,14 @@ class RangerCasts:
         carried = [(r.index, g, s) for r in self.robots for g in r.ranger_models
                    for s in g.sensors]
         # a ranger's sensors share its body's frame (computed once per ranger and cast)
+        chain = {}
+        for _, g, _ in carried:
+            if g not in chain:
+                chain[g] = elements(g, [g.geom_pose])
+        # elements(g, [g.geom_pose, g.ray_local(s)]): the ranger's chain then a plain tail
         self._origin_chains = Chains(
-            [(r, elements(g, [g.geom_pose, g.ray_local(s)])) for r, g, s in carried],
-            [(g.index, len(elements(g)) + 1) for _, g, _ in carried])
+            [(r, chain[g] + [(tuple(g.ray_local(s)), False, 0.0)]) for r, g, s in carried],
+            [(g.index, len(chain[g])) for _, g, _ in carried])
         views = [self._views_of.get(g) for g in rangers]
         self._view_of_slot = views
         count = [v.samples if v is not None else 0 for v in views]
@@ -105,12 +110,15 @@ class RangerCasts:
         Space.cast."""
         sensors = [self._sensors[k] for k in due]
         counts = np.array([s.samples for _, s in sensors], np.int64)
+        beam_z = {}
+        for g in {g for g, _ in sensors}:
+            beam_z.update((id(s), o[2]) for s, o in zip(g.sensors, g.ray_origins(), strict=True))
         return dict(
             offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
             sensor=np.repeat(np.arange(len(sensors), dtype=np.int64), counts),
             incr=np.array([Ranger.sample_increment(s) for _, s in sensors], np.float64),
             rmax=np.array([s.range[1] for _, s in sensors], np.float64),
-            ray_class=np.array([self._ray_zs.index(g.ray_origin(s)[2]) for g, s in sensors],
+            ray_class=np.array([self._ray_zs.index(beam_z[id(s)]) for _, s in sensors],
                                np.int64),
             root=np.array([g.root.index for g, _ in sensors], np.int64),
             origins=np.empty((len(sensors), 4), np.float64))

@@ -65,6 +65,11 @@ class Ranger(Model):
         sensor's pose, turned to the first beam, raised to half the transducer's height."""
         return pose_add(self.body_pose(), self.ray_local(sensor))
 
+    def ray_origins(self):
+        """ray_origin of each of its sensors, in order (its body's pose found once)."""
+        body = self.body_pose()
+        return [pose_add(body, self.ray_local(s)) for s in self.sensors]
+
     @staticmethod
     def ray_local(sensor):
         """The first ray's pose in the ranger's body frame."""

@@ -203,12 +203,21 @@ class Space:
         """Stage's UnMap then Map of blocks (int array) at their body poses (rows x, y, cos,
         sin) in `layer`, each with its drawing's sequence number."""
         self.hold(blocks, poses)
-        self._hold_pages(blocks)
-        grid.redraw(blocks, poses, seqs, layer, self.ppm, self.blk_pts, self.blk_pts_off,
-                    self._vx, self._vy, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
-                    self.rx0, self.ry0, self.nrx, self.nry, self.reg_count, self.reg_dyn,
-                    self.reg_dyncount, self.dyn_head, self.ent_block, self.ent_next,
-                    self.ent_seq, self.free_state, self.ent_free, self.page_free)
+        start = 0
+        while start < len(blocks):
+            # as many blocks as the free pages surely hold, else more pages
+            need = np.cumsum(self.blk_pages[blocks[start:]])
+            end = start + int(np.searchsorted(need, self.free_state[0], side='right'))
+            if end == start:
+                self.grow_pages()
+                continue
+            grid.redraw(blocks[start:end], poses[start:end], seqs[start:end], layer, self.ppm,
+                        self.blk_pts, self.blk_pts_off, self._vx, self._vy, self.rc_start,
+                        self.rc_len, self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx,
+                        self.nry, self.reg_count, self.reg_dyn, self.reg_dyncount,
+                        self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
+                        self.free_state, self.ent_free, self.page_free)
+            start = end
 
     def move(self, blocks, new_poses, old_poses, seqs, layer):
         """ModelPosition::Move's grid work (grid.move): the blocks drawn at the new poses,
@@ -224,6 +233,14 @@ class Space:
                          self.ent_next, self.ent_seq, self.free_state, self.ent_free,
                          self.page_free, self.blk_model, self.blk_zmin, self.blk_zmax,
                          self.model_root, self.model_obstacle)
+
+    def collides(self, blocks, layer):
+        """Block::TestCollision of the blocks as drawn in `layer` (grid.collides)."""
+        return grid.collides(blocks, layer, self.rc_start, self.rc_len, self.rc_x, self.rc_y,
+                             self.rx0, self.ry0, self.nrx, self.nry, self.reg_static,
+                             self.reg_dyn, self.st_coll, self.blk_class, self.dyn_head,
+                             self.ent_block, self.ent_next, self.blk_model, self.blk_zmin,
+                             self.blk_zmax, self.model_root, self.model_obstacle)
 
     def next_seq(self):
         self.seq += 1

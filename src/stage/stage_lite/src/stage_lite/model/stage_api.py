@@ -11,6 +11,7 @@ Stage. No rospy.
 import math
 from dataclasses import dataclass, replace
 
+from .bodies import rasterize
 from .energy import find_power_pack
 from .pose import pose_add, stage_normalize
 from .robot_state import MODE_CODE
@@ -170,6 +171,12 @@ class ModelApi:
     @property
     def color(self):
         return self._model.color
+
+    def rasterize(self, width, height, cell_w, cell_h):
+        """Model::Rasterize: the outlines of its blocks in a width x height raster of
+        cell_w x cell_h m cells from its bottom left corner (bytearray, bottom row first)."""
+        return rasterize(self._model.blocks, self._model.geom_size, width, height, cell_w,
+                         cell_h)
 
     # ---- subscriptions and callbacks -------------------------------------------------------
     def subscribe(self):

@@ -95,8 +95,8 @@ def load(path, rng):
                                                               path)
     return LoadedWorld(resolution_m, ppm, interval_us, quit_time_s, speedup, window, models,
                        robots, space, ray_zs, statics, static_cells,
-                       wf.warnings + wf.unused_warnings(), stageros_warnings, threads,
-                       **flags)
+                       wf.warnings + wf.unused_warnings() + _overlaps(path, models, robots, space),
+                       stageros_warnings, threads, **flags)
 
 
 def _load_models(wf, path, rng):
@@ -162,8 +162,7 @@ def _post_load(models, ppm, warnings, path):
                   [m.ranger_return for m in models], [m.obstacle_return for m in models])
     cells = _static_cells(models, moving, ppm)
     dynamic, coll = _moving_blocks(models, moving, ppm)
-    ray_zs = sorted({g.ray_origin(sensor)[2] for r in robots for g in r.ranger_models
-                     for sensor in g.sensors})
+    ray_zs = sorted({o[2] for r in robots for g in r.ranger_models for o in g.ray_origins()})
     space.build(cells, ray_zs, dynamic, coll, _extent(dynamic))
     _assign_blocks(robots, dynamic)
     _draw_at_start(space, robots)
@@ -262,14 +261,41 @@ def _assign_blocks(robots, dynamic):
 
 
 def _draw_at_start(space, robots):
-    """The load-time drawings, in model order, in both layers (sequence = the model's index)."""
+    """The load-time drawings, in model order, in both layers (sequence = the model's index):
+    each layer's in one batch (a cell's entries in each layer come in the same order)."""
+    blocks, poses, seqs = [], [], []
     for r in robots:
         for m, ks in r.blocks:
-            blocks = np.array(ks, np.int64)
-            poses = np.repeat([body_row(m)], len(ks), axis=0)
-            seqs = np.full(len(ks), m.index, np.int64)
-            for layer in (0, 1):
-                space.draw(blocks, poses, layer, seqs)
+            blocks.extend(ks)
+            poses.extend([body_row(m)] * len(ks))
+            seqs.extend([m.index] * len(ks))
+    if blocks:
+        blocks = np.array(blocks, np.int64)
+        poses = np.array(poses, np.float64)
+        seqs = np.array(seqs, np.int64)
+        for layer in (0, 1):
+            space.draw(blocks, poses, layer, seqs)
+
+
+def _overlaps(path, models, robots, space):
+    """A warning when robots start overlapping a wall or another body (too many robots
+    for the floor, a pose on a wall): Stage loads such a world and rejects every move that
+    ends in a collision, so they do not move until what they overlap has moved away (a
+    wall never does). Bodies are drawn by their outlines (MapPoly): a robot wholly inside
+    a thick wall overlaps nothing, in Stage as here."""
+    stuck = []
+    for r in robots:
+        hit = space.collides(r.block_ids, 0) if len(r.block_ids) else grid.NO_HIT
+        if hit != grid.NO_HIT:
+            stuck.append((r, hit))
+    if not stuck:
+        return []
+    r, hit = stuck[0]
+    what = {grid.STATIC: 'a wall', grid.GROUND: 'the ground'}.get(hit)
+    what = what or models[hit].root.token
+    return ['%s: %d of %d robots start overlapping a wall or another body (the first: %s,'
+            ' on %s); as in Stage, they cannot move until it has moved away' % (
+                path, len(stuck), len(robots), r.model.token, what)]
 
 
 def _tree(model):

@@ -8,6 +8,7 @@ entities, properties); its properties are then read as Stage's readers read them
 - lengths in metres (`unit_length` m, cm or mm) and angles in degrees (`unit_angle`).
 Every property remembers whether anything read it: Stage's "defined but not used" warnings.
 """
+import functools
 import os
 import re
 
@@ -22,12 +23,14 @@ _ATOF = re.compile(r'[ \t\n\v\f\r]*([+-]?(?:0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|
                    r'|inf(?:inity)?|nan))', re.IGNORECASE)
 
 
+@functools.lru_cache(maxsize=4096)
 def c_atoi(text):
     """C's atoi: leading blanks, a sign, digits; 0 when there are none ('1.9' gives 1)."""
     m = _ATOI.match(text)
     return int(m.group(1)) if m else 0
 
 
+@functools.lru_cache(maxsize=4096)
 def c_atof(text):
     """C's atof (strtod): the longest number at the start ('0.5m' gives 0.5), else 0.0."""
     m = _ATOF.match(text)
@@ -107,12 +110,19 @@ class Worldfile:
         if len(p.values) > len(fmt):
             self.warn(p, 'property %s has %d values; Stage reads the first %d'
                       % (name, len(p.values), len(fmt)))
+        p.used = True
         out = []
-        for k, c in enumerate(fmt):
-            v = self._value(p, k)
-            out.append({'l': lambda s: c_atof(s) * self.unit_length,
-                        'a': lambda s: c_atof(s) * self.unit_angle,
-                        'f': c_atof, 'i': c_atoi, 's': str}[c](v))
+        for c, v in zip(fmt, p.values, strict=False):     # values beyond fmt: not read
+            if c == 'l':
+                out.append(c_atof(v) * self.unit_length)
+            elif c == 'a':
+                out.append(c_atof(v) * self.unit_angle)
+            elif c == 'f':
+                out.append(c_atof(v))
+            elif c == 'i':
+                out.append(c_atoi(v))
+            else:
+                out.append(v)
         return out
 
     def warn(self, p, what):

@@ -36,7 +36,7 @@ class WorldError(Exception):
         self.what = what
 
 
-@dataclass
+@dataclass(slots=True)
 class Token:
     kind: int
     text: str
@@ -135,7 +135,7 @@ def _include(text, i, path, line, main_dir, chain, out):
     return n if end < 0 else end + 1
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class Prop:
     """One written property: its raw values (number or string texts), where, and whether read."""
 
@@ -146,7 +146,7 @@ class Prop:
     used: bool = False
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class Entity:
     """One entity as Stage numbers them: its type as written after define chains resolve to a
     type Stage knows (e.g. 'position' for an `erratic(...)`), its parent entity's index."""
@@ -173,6 +173,10 @@ class _Parser:
         self.path = path
         self.tokens = tokenize(path)
         self.macros = {}
+        # a macro's expansion, kept to be copied for its next instances (a swarm world has
+        # thousands): what it created, keyed by where its body starts and by how many
+        # macros were defined then (a later define could change what its body means)
+        self._expansions = {}
         self.entities = [Entity(0, -1, '', path, 0)]
         self._parse()
 
@@ -251,7 +255,7 @@ class _Parser:
         start = self.macros.get(name)
         if start is not None:
             created = len(self.entities)
-            self._parse_entity(entity, start)
+            self._expand(entity, start)
             if len(self.entities) == created:
                 raise self._error(i, 'macro %s defines no entity' % name)
             entity = created
@@ -273,6 +277,26 @@ class _Parser:
                                   % (toks[j].text, name))
             j += 1
         raise self._error(i, "missing ')' for %s( )" % name)
+
+    def _expand(self, parent, start):
+        """A macro's body parsed as a child of parent: the first time by _parse_entity,
+        then as a copy of what that made (the same entities, properties and places)."""
+        created = len(self.entities)
+        key = (start, len(self.macros))
+        made = self._expansions.get(key)
+        if made is None:
+            self._parse_entity(parent, start)
+            self._expansions[key] = [
+                (e.parent - created if e.parent >= created else -1, e.kind, e.path, e.line,
+                 [(q.name, q.values, q.path, q.line) for q in e.props.values()])
+                for e in self.entities[created:]]
+            return
+        for up, kind, path, line, props in made:
+            ent = Entity(len(self.entities), parent if up < 0 else created + up, kind, path,
+                         line, {name: Prop(name, values, where, at)
+                                for name, values, where, at in props})
+            self.entities.append(ent)
+            self.entities[ent.parent].children.append(ent.index)
 
     def _add_entity(self, parent, kind, tok):
         ent = Entity(len(self.entities), parent, kind, tok.path, tok.line)

@@ -1,0 +1,48 @@
+"""stageros's topic names for robot i of N (stage_ros 1.8.0's mapName), and finding N from
+the master's topic list (pure, no rospy).
+
+With more than one robot every name is absolute, ``/robot_<i>/base_scan``; with exactly one,
+stageros's names are relative (``base_scan``), in the namespace both nodes share.
+"""
+import re
+from dataclasses import dataclass
+
+_SCAN = re.compile(r'^/robot_(\d+)/base_scan$')
+
+
+@dataclass(frozen=True)
+class RobotTopics:
+    scan: str
+    odom: str
+    cmd_vel: str
+
+
+def robot_topics(index, count):
+    """RobotTopics of robot `index` (0-based) of `count`; ValueError if it is not one."""
+    if count < 1 or not 0 <= index < count:
+        raise ValueError('robot %d of %d is not a robot' % (index, count))
+    p = '' if count == 1 else '/robot_%d/' % index
+    return RobotTopics(p + 'base_scan', p + 'odom', p + 'cmd_vel')
+
+
+def scan_robots(topic_names):
+    """The sorted indices i of the /robot_<i>/base_scan topics among topic_names."""
+    found = set()
+    for name in topic_names:
+        m = _SCAN.match(name)
+        if m:
+            found.add(int(m.group(1)))
+    return sorted(found)
+
+
+def missing_robots(indices, count):
+    """The robots 0..count-1 that indices lacks, in order."""
+    have = set(indices)
+    return [i for i in range(count) if i not in have]
+
+
+def first_few(indices, shown=5):
+    """'robot_3, robot_7, ... (12 in all)': a list short enough for a log line."""
+    names = ['robot_%d' % i for i in indices[:shown]]
+    more = ', ...' if len(indices) > shown else ''
+    return '%s%s (%d in all)' % (', '.join(names), more, len(indices))
