@@ -2,6 +2,7 @@
 
     ./ws bench stage_worlds_bench [--peer STAGE] [--worlds DIR] [--runs N] [--only NAME ..]
                                   [--ours COMMAND] [--before COMMAND]
+                                  [--world PATH [PATH ..]] [--span T1 T2]
 
 STAGE is the real Stage 4.3.0's program (default /work/scratch/peer/install/bin/stage, its
 libstage found through LD_LIBRARY_PATH=<its prefix>/lib), DIR a copy of Stage's `worlds/`
@@ -21,6 +22,8 @@ left out:
 * wall s per simulated s = (wall(T2) - wall(T1)) / (T2 - T1), and the real-time factor;
 * cores = (user + sys)(T2) - (user + sys)(T1) over the same wall difference;
 * peak RSS (MB) of the T2 run.
+--world adds worlds of your own (self-contained files, such as bench/make_swarm_worlds.py's,
+copied into the bench's folder), each run between --span's T1 and T2 (default 2 and 12 s).
 RUNS times (default 3), each simulator in turn, one at a time; medians of the runs. Prints
 a markdown table, a row per world and simulator, with the ratio of each real-time factor to
 the real Stage's (above 1: faster than Stage).
@@ -44,6 +47,7 @@ WORLDS = (('simple', 'simple.world', 10, 310),
           ('pioneer_flocking', 'pioneer_flocking_run.world', 5, 45),
           ('cave', 'benchmark/cave.world', 5, 35),
           ('hospital', 'benchmark/hospital.world', 2, 12))
+SPAN_S = (2, 12)       # --world's T1 and T2: the hospital's span
 TIME_FORMAT = 'bench-time %e %U %S %M'
 RUN_TIMEOUT_S = 1800.0
 
@@ -114,6 +118,10 @@ def main(argv=None):
                     help='these worlds only')
     ap.add_argument('--ours', default='stage', help="stage_lite's program (a command line)")
     ap.add_argument('--before', help='an earlier stage_lite, measured beside (a command line)')
+    ap.add_argument('--world', nargs='+', default=[],
+                    help='world files of your own, self-contained (run with --span)')
+    ap.add_argument('--span', nargs=2, type=int, default=SPAN_S, metavar=('T1', 'T2'),
+                    help="--world's quit times (s)")
     args = ap.parse_args(argv)
     why = missing(args.peer, args.worlds)
     if why:
@@ -128,9 +136,15 @@ def main(argv=None):
     rows = []
     with tempfile.TemporaryDirectory(prefix='stage_worlds_bench_') as tmp:
         mirror(args.worlds, tmp)
-        for name, world, t1, t2 in WORLDS:
-            if args.only and name not in args.only:
-                continue
+        own = []
+        for path in args.world:          # beside Stage's worlds, under the bench's folder
+            name = os.path.splitext(os.path.basename(path))[0]
+            with open(path, 'rb') as src, open(os.path.join(tmp, name + '.world'), 'wb') as f:
+                f.write(src.read())
+            own.append((name, name + '.world', *args.span))
+        chosen = [w for w in WORLDS if (args.only or not own) and (not args.only
+                                                                  or w[0] in args.only)]
+        for name, world, t1, t2 in chosen + own:
             short, long_ = timed_copy(tmp, world, t1), timed_copy(tmp, world, t2)
             runs = {side: [] for side, _, _ in sides}
             for k in range(args.runs):

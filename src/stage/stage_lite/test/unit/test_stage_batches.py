@@ -141,3 +141,32 @@ def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robo
                     r.model.index]}) for r in g.fiducials], step
                 seen += len(f.fiducials)
     assert seen > 0
+
+
+def test_the_noise_kernel_draws_as_the_beams_one_by_one():
+    """RangerNoise.apply_rows (many sensors' beams in one kernel, the stream's pointers in
+    registers) leaves the beams, the stream and the Gaussian's spare as the plain path, beam
+    by beam (angle_noise, then range_noise: the angular-noise scans' draws), in the rows'
+    order."""
+    from stage_lite.model.glibc_random import Random
+    from stage_lite.model.noise import RangerNoise
+    gen = np.random.default_rng(7)
+    counts = gen.integers(1, 6, 40)
+    offsets = np.concatenate(([0], np.cumsum(counts))).astype(np.int64)
+    rmax = gen.uniform(1.0, 3.0, 40)
+    prop = gen.uniform(0.0, 0.1, 40)
+    const = gen.uniform(0.0, 0.05, 40)
+    ranges = gen.uniform(0.0, 3.5, int(offsets[-1]))      # hits and misses
+    rows = gen.permutation(40).astype(np.int64)
+    each, at_once = RangerNoise(Random(5)), RangerNoise(Random(5))
+    expected = ranges.copy()
+    for i in rows.tolist():
+        for t in range(offsets[i], offsets[i + 1]):
+            each.angle_noise()
+            expected[t] = each.range_noise(ranges[t], rmax[i], (const[i], prop[i], 0.0))
+    got = ranges.copy()
+    at_once.apply_rows(got, offsets, rows, rmax, prop, const)
+    assert got.tobytes() == expected.tobytes()
+    for mine, theirs in zip(at_once.random.state(), each.random.state(), strict=True):
+        assert mine.tobytes() == theirs.tobytes()
+    assert at_once.spare.tobytes() == each.spare.tobytes()

@@ -43,3 +43,23 @@ def test_warm_compiles_every_kernel_python_calls():
     assert {'grid.move', 'grid.redraw', 'raytrace.cast_scans', 'raytrace.cast_scans_parallel',
             'raytrace.trace', 'image._trace', '_avoid._beam_rule'} <= set(result['kernels'])
     assert result['left'] == [], 'warmup.warm() never calls %s' % result['left']
+
+
+def test_a_change_to_any_source_drops_every_cached_kernel(tmp_path):
+    from stage_lite.model.warmup import drop_stale_kernels
+    pkg = tmp_path / 'pkg'
+    (pkg / 'model' / '__pycache__').mkdir(parents=True)
+    (pkg / 'model' / 'grid.py').write_text('def move(): return 1\n')
+    (pkg / 'model' / 'motion.py').write_text('def move_robots(): return 2\n')
+
+    def cached():
+        path = pkg / 'model' / '__pycache__' / 'motion.move_robots-9.py311.nbi'
+        path.write_bytes(b'kernel')
+        return path
+    first = cached()
+    assert drop_stale_kernels(str(pkg)) == 1 and not first.exists()   # no digest yet
+    kept = cached()
+    assert drop_stale_kernels(str(pkg)) == 0 and kept.exists()        # nothing changed
+    # motion's own file untouched, the file its kernel compiles in changed
+    (pkg / 'model' / 'grid.py').write_text('def move(): return 3\n')
+    assert drop_stale_kernels(str(pkg)) == 1 and not kept.exists()

@@ -3,7 +3,8 @@
 python3-numba is a dependency: without it the kernels run as the Python they are written in,
 the same numbers many times slower. Every kernel is compiled with cache=True: numba keeps it
 in its cache (__pycache__ beside the source, or NUMBA_CACHE_DIR) and warmup.py compiles them
-all at ./ws build.
+all at ./ws build, first dropping the whole cache when any source of the package changed
+(numba checks a kernel against its own file only, not the files of the kernels it calls).
 """
 import os
 

@@ -36,8 +36,12 @@ def normalize(a):
 @njit(cache=True)
 def pose_add(px, py, pz, pa, qx, qy, qz, qa):
     """pose.pose_add."""
-    cosa = math.cos(pa)
-    sina = math.sin(pa)
+    return pose_add_turned(px, py, pz, pa, math.cos(pa), math.sin(pa), qx, qy, qz, qa)
+
+
+@njit(cache=True)
+def pose_add_turned(px, py, pz, pa, cosa, sina, qx, qy, qz, qa):
+    """pose_add with cos(pa) and sin(pa) given (computed once for poses added to one)."""
     return (px + qx * cosa - qy * sina, py + qx * sina + qy * cosa, pz + qz,
             normalize(pa + qa))
 
@@ -64,16 +68,24 @@ def chain_poses(targets, t_robot, t_off, t_shared, t_prefix, el_pose, el_stack, 
     compute them once: the same sums, the same numbers."""
     last = -1
     px = py = pz = pa = 0.0
+    cosa = 1.0
+    sina = 0.0
     for i in range(targets.shape[0]):
         t = targets[i]
         start = t_off[t] + t_prefix[t]
         if t_shared[t] < 0 or t_shared[t] != last:
             px, py, pz, pa = chain(pose, t_robot[t], el_pose, el_stack, el_zadd, t_off[t], start)
+            cosa = math.cos(pa)     # the first sum after the shared part turns by pa
+            sina = math.sin(pa)
             last = t_shared[t]
         x, y, z, a = px, py, pz, pa
         for k in range(start, t_off[t + 1]):
-            x, y, z, a = pose_add(x, y, z, a, el_pose[k, 0], el_pose[k, 1], el_pose[k, 2],
-                                  el_pose[k, 3])
+            if k == start:
+                x, y, z, a = pose_add_turned(x, y, z, a, cosa, sina, el_pose[k, 0],
+                                             el_pose[k, 1], el_pose[k, 2], el_pose[k, 3])
+            else:
+                x, y, z, a = pose_add(x, y, z, a, el_pose[k, 0], el_pose[k, 1],
+                                      el_pose[k, 2], el_pose[k, 3])
             if el_stack[k]:
                 z += el_zadd[k]
         out[i, 0] = x

@@ -56,24 +56,51 @@ def _gaussian(table, pointers, spare, variance):
 
 
 @njit(cache=True)
-def _apply(table, pointers, spare, ranges, range_max, proportional, constant, out):
-    for t in range(ranges.shape[0]):
-        _simple_noise(table, pointers)      # the angle's draw (no angular noise here)
-        r = ranges[t]
-        if r < range_max:
-            # C++ evaluates the sum's calls left to right here (GCC): the uniform first
-            out[t] = r + r * proportional * _simple_noise(table, pointers) \
-                + _gaussian(table, pointers, spare, constant)
-        else:
-            out[t] = r
+def _next(table, f, r):
+    """_random with the stream's pointers as values: (value, front, rear) after the draw."""
+    value = (table[f] + table[r]) & 0xFFFFFFFF
+    table[f] = value
+    return value >> 1, (f + 1) % 31, (r + 1) % 31
 
 
 @njit(cache=True)
 def _apply_rows(table, pointers, spare, ranges, offsets, rows, range_max, proportional,
                 constant):
+    """The draws of each row's beams (ranges[offsets[i]:offsets[i + 1]]), rows in turn, the
+    noise added in place: per beam the angle's draw (no angular noise here), then, for a
+    hit, range + range * prop * _simple_noise() + _gaussian(const) (C++ evaluates the sum's
+    calls left to right here, GCC: the uniform first); a miss reads range max and draws
+    nothing more. The stream's pointers are kept in registers between draws (written back
+    at the end), not in memory at every draw: the same draws, in the same order."""
+    f = pointers[0]
+    r = pointers[1]
     for i in rows:
-        _apply(table, pointers, spare, ranges[offsets[i]:offsets[i + 1]], range_max[i],
-               proportional[i], constant[i], ranges[offsets[i]:offsets[i + 1]])
+        rmax = range_max[i]
+        prop = proportional[i]
+        variance = constant[i]
+        for t in range(offsets[i], offsets[i + 1]):
+            _, f, r = _next(table, f, r)        # the angle's draw (no angular noise here)
+            x = ranges[t]
+            if x < rmax:
+                v, f, r = _next(table, f, r)
+                uniform = 2.0 * ((v % 1000) * 0.001 - 0.5)     # _simple_noise
+                if spare[0] != 0.0:                           # _gaussian
+                    spare[0] = 0.0
+                    gauss = math.sqrt(variance * spare[1]) * math.sin(spare[2])
+                else:
+                    spare[0] = 1.0
+                    v, f, r = _next(table, f, r)
+                    rand1 = v / RAND_MAX
+                    if rand1 < 1e-100:
+                        rand1 = 1e-100
+                    rand1 = -2.0 * math.log(rand1)
+                    spare[1] = rand1
+                    v, f, r = _next(table, f, r)
+                    spare[2] = (v / RAND_MAX) * TWO_PI
+                    gauss = math.sqrt(variance * rand1) * math.cos(spare[2])
+                ranges[t] = x + x * prop * uniform + gauss
+    pointers[0] = f
+    pointers[1] = r
 
 
 class RangerNoise:
@@ -87,9 +114,10 @@ class RangerNoise:
         """A sensor's ranges as Sensor::Update leaves them, beams cast without angular noise:
         float64 array; the stream moved as Stage moves it."""
         const, prop, _ = noise
-        out = np.empty(len(ranges), np.float64)
-        _apply(self.random.table, self.random.pointers, self.spare,
-               np.asarray(ranges, np.float64), float(range_max), float(prop), float(const), out)
+        out = np.array(ranges, np.float64)
+        self.apply_rows(out, np.array([0, len(out)], np.int64), np.zeros(1, np.int64),
+                        np.array([range_max], np.float64), np.array([prop], np.float64),
+                        np.array([const], np.float64))
         return out
 
     def apply_rows(self, ranges, offsets, rows, range_max, proportional, constant):

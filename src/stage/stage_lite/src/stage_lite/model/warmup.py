@@ -12,10 +12,16 @@ with the argument types stageros uses (test_stage_warmup.py checks that none is 
 a second world, whose robot stands on another model, the kernels a World moving its robots
 one by one calls.
 """
+import glob
+import hashlib
 import os
 import sys
 import tempfile
 import time
+
+#: stage_lite's own folder: its sources, and numba's cache beside them
+PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+STAMP = 'kernels.sha256'
 
 # lasers with enough beams for the threads too (space.PARALLEL_RAYS), and one with a few;
 # a ring of 12 one-beam sensors for Stage's expand_swarm and pioneer_flocking (their batches)
@@ -88,8 +94,43 @@ def warm_sensors(world):
             m.update(sight, layer)
 
 
+def drop_stale_kernels(package_dir=PACKAGE_DIR):
+    """numba checks a cached kernel against its own source file only, and a kernel that
+    calls another file's (motion.move_robots compiles grid.move into itself) would load
+    stale from the cache once that file changed. So the cache is kept with one digest of
+    every source of the package, and when the digest changes every cached kernel of the
+    package goes (numba's cache beside the sources; one under NUMBA_CACHE_DIR is the user's
+    to clear). Returns how many cache files went."""
+    digest = hashlib.sha256()
+    for path in sorted(glob.glob(os.path.join(package_dir, '**', '*.py'), recursive=True)):
+        digest.update(os.path.relpath(path, package_dir).encode())
+        with open(path, 'rb') as f:
+            digest.update(hashlib.sha256(f.read()).digest())
+    stamp = os.path.join(package_dir, '__pycache__', STAMP)
+    try:
+        with open(stamp) as f:
+            if f.read().strip() == digest.hexdigest():
+                return 0
+    except OSError:
+        pass
+    gone = 0
+    try:
+        for pattern in ('*.nbi', '*.nbc'):
+            for path in glob.glob(os.path.join(package_dir, '**', '__pycache__', pattern),
+                                  recursive=True):
+                os.remove(path)
+                gone += 1
+        os.makedirs(os.path.dirname(stamp), exist_ok=True)
+        with open(stamp, 'w') as f:
+            f.write(digest.hexdigest() + '\n')
+    except OSError as err:      # a read-only install: numba keeps its cache elsewhere then
+        sys.stderr.write('stage_lite: cannot renew the kernels\' cache: %s\n' % err)
+    return gone
+
+
 def main():
     start = time.monotonic()
+    drop_stale_kernels()
     warm()
     sys.stdout.write('stage_lite: kernels ready (%.1f s)\n' % (time.monotonic() - start))
 
