@@ -282,15 +282,8 @@ class Energy:
 
 def outline_cells(model, ppm):
     """(x, y) cells of a model's blocks' outlines at its pose now (Stage's MapPoly)."""
-    xs, ys = [], []
-    for block in model.blocks:
-        vx, vy = model.pixel_vertices(block, ppm)
-        n = grid.poly_cell_count(vx, vy)
-        cx = np.empty(n, np.int64)
-        cy = np.empty(n, np.int64)
-        grid.poly_cells(vx, vy, cx, cy, 0)
-        xs.append(cx)
-        ys.append(cy)
+    cells = [model.outline_cells(block, ppm) for block in model.blocks]
+    xs, ys = [c[0] for c in cells], [c[1] for c in cells]
     if not xs:
         return np.zeros(0, np.int64), np.zeros(0, np.int64)
     return np.concatenate(xs), np.concatenate(ys)

@@ -20,7 +20,7 @@ import os
 
 import numpy as np
 
-from . import image
+from . import grid, image
 from .bodies import Block, bounding_box, calc_size, canonical_winding, rect_block
 from .energy import load_energy
 from .pose import pose_add, stage_normalize
@@ -199,6 +199,16 @@ class Model:
         x = gx + block.pts[:, 0] * cosa - block.pts[:, 1] * sina
         y = gy + block.pts[:, 0] * sina + block.pts[:, 1] * cosa
         return np.floor(x * ppm).astype(np.int64), np.floor(y * ppm).astype(np.int64)
+
+    def outline_cells(self, block, ppm):
+        """Stage's MapPoly of a block at the model's current pose: the (x, y) int64 cells
+        of its outline."""
+        vx, vy = self.pixel_vertices(block, ppm)
+        n = grid.poly_cell_count(vx, vy)
+        xs = np.empty(n, np.int64)
+        ys = np.empty(n, np.int64)
+        grid.poly_cells(vx, vy, xs, ys, 0)
+        return xs, ys
 
     def block_z(self, block):
         """Block::Map's global_z of a block: its local z plus the model's global z and

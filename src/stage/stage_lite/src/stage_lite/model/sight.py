@@ -74,12 +74,9 @@ class Sight:
             if m.index in moving:
                 continue
             for block in m.blocks:
-                vx, vy = m.pixel_vertices(block, space.ppm)
+                x, y = m.outline_cells(block, space.ppm)
                 lo, hi = m.block_z(block)
-                n = grid.poly_cell_count(vx, vy)
-                x = np.empty(n, np.int64)
-                y = np.empty(n, np.int64)
-                grid.poly_cells(vx, vy, x, y, 0)
+                n = x.size
                 xs.append(x)
                 ys.append(y)
                 ms.append(np.full(n, m.index, np.int64))

@@ -205,12 +205,9 @@ def _static_cells(models, moving, ppm):
         if m.index in moving:
             continue
         for block in m.blocks:
-            vx, vy = m.pixel_vertices(block, ppm)
+            xs, ys = m.outline_cells(block, ppm)
             zmin, zmax = m.block_z(block)
-            n = grid.poly_cell_count(vx, vy)
-            xs = np.empty(n, np.int64)
-            ys = np.empty(n, np.int64)
-            grid.poly_cells(vx, vy, xs, ys, 0)
+            n = xs.size
             statics[0].append(xs)
             statics[1].append(ys)
             statics[2].append(np.full(n, m.index, np.int64))
