@@ -152,18 +152,23 @@ def update_positions(due, subscribed, goal, mode, velocity, est, pose, drive, wh
             for k in range(4):
                 est[i, k] = pose[i, k]
         else:
-            ex, ey, ea = error[i, 0], error[i, 1], error[i, 3]
-            x, y, a = est[i, 0], est[i, 1], est[i, 3]
-            a = normalize(a + (v[3] * dt) * (1.0 + ea))
-            cosa = math.cos(a)
-            sina = math.sin(a)
-            dx = (v[0] * dt) * (1.0 + ex)
-            dy = (v[1] * dt) * (1.0 + ey)
-            x += dx * cosa + dy * sina
-            y -= dy * cosa - dx * sina      # Stage's sign, kept (STAGE_ODOM_Y_SIGN)
-            est[i, 0] = x
-            est[i, 1] = y
-            est[i, 3] = a
+            est[i, 0], est[i, 1], est[i, 3] = odometry_step(
+                est[i, 0], est[i, 1], est[i, 3], v[0], v[1], v[3], dt, error[i, 0],
+                error[i, 1], error[i, 3])
+
+
+@njit(cache=True)
+def odometry_step(x, y, a, vx, vy, va, dt, ex, ey, ea):
+    """ModelPosition::Update's odometry: the estimate (x, y, a) moved by the velocity over
+    dt with the integration error (ex, ey, ea); the new (x, y, a)."""
+    a = normalize(a + (va * dt) * (1.0 + ea))
+    cosa = math.cos(a)
+    sina = math.sin(a)
+    dx = (vx * dt) * (1.0 + ex)
+    dy = (vy * dt) * (1.0 + ey)
+    x += dx * cosa + dy * sina
+    y -= dy * cosa - dx * sina      # Stage's sign, kept (STAGE_ODOM_Y_SIGN)
+    return x, y, a
 
 
 @njit(cache=True)

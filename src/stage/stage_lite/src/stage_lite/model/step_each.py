@@ -5,13 +5,13 @@ World.step runs every robot's update and move in motion.py's kernels; where thos
 draw follows each update), the World steps as here: the same rules, one robot at a time.
 test_stage_batches.py holds the two to the same run, bit for bit.
 """
-import math
 
 import numpy as np
 
 from . import grid
 from .blobfinder import Blobfinder
 from .fiducial import Fiducial
+from .motion import odometry_step
 from .pose import pose_add, stage_normalize
 from .robot import body_row
 from .scheduler import CB_UPDATE
@@ -81,13 +81,7 @@ class RobotByRobot:
         else:
             ex, ey, _, ea = m.integration_error
             x, y, z, a = r.est_pose
-            a = stage_normalize(a + (vel[3] * dt) * (1.0 + ea))
-            cosa = math.cos(a)
-            sina = math.sin(a)
-            dx = (vel[0] * dt) * (1.0 + ex)
-            dy = (vel[1] * dt) * (1.0 + ey)
-            x += dx * cosa + dy * sina
-            y -= dy * cosa - dx * sina      # Stage's sign, kept (STAGE_ODOM_Y_SIGN)
+            x, y, a = odometry_step(x, y, a, vel[0], vel[1], vel[3], dt, ex, ey, ea)
             r.est_pose = (x, y, z, a)
 
     def _move(self, r, dt, layer):
