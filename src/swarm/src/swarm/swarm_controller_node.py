@@ -6,7 +6,11 @@ import rosgraph
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.publishers import unqueued_publisher
-from course_common.rospy_internals import shutdown_requested, throttled_topic_checks
+from course_common.rospy_internals import (
+    one_receive_thread,
+    shutdown_requested,
+    throttled_topic_checks,
+)
 from course_common.schedule import BAD_INPUT_WARN_PERIOD_S
 from course_common.startup import init_node, loop_at_rate, quiet_at_shutdown
 from geometry_msgs.msg import Twist
@@ -30,7 +34,8 @@ class SwarmController:
 
     Subscribes: /robot_<i>/base_scan (sensor_msgs/LaserScan), /robot_<i>/odom
         (nav_msgs/Odometry), for each robot i (with one robot: base_scan, odom, relative);
-        queue 1 each: one rospy thread per connection, 2 per robot.
+        queue 1 each, all read by one thread (rospy_internals.one_receive_thread; rospy
+        alone gives each connection a thread: 2 per robot).
     Publishes: /robot_<i>/cmd_vel (geometry_msgs/Twist, no send queue) for each robot with
         a scan, at ~rate_hz of sim time (/use_sim_time: stageros's clock); one zero Twist
         each at shutdown. A scan with a NaN or negative range: a zero Twist (and a throttled WARN).
@@ -212,6 +217,7 @@ def check_count(count):
 
 def main():
     throttled_topic_checks()  # 3 topics a robot: rospy's checks after each registration
+    one_receive_thread()      # 2 subscribed connections a robot: one thread, not 2 N
     init_node('swarm_controller')
     params = load_or_exit(load_params, 'swarm_controller')
     if not rospy.get_param('/use_sim_time', False):
