@@ -1,0 +1,91 @@
+// Scratch probe (never in the repository): load a world with the real Stage 4.3.0 as
+// `stage -g` does, with drand48 set to glibc's unseeded state after Stg::Init, then print
+// every model and, per step, every position model's pose and every subscribed ranger's scan.
+#define protected public
+#define private public
+#include "stage.hh"
+#undef protected
+#undef private
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+using namespace Stg;
+
+static FILE *out;
+
+static int DumpModel(Model *m, void *) {
+  Pose g = m->GetGlobalPose();
+  Pose l = m->GetPose();
+  Geom geom = m->GetGeom();
+  Color c = m->GetColor();
+  fprintf(out, "MODEL %s %s parent %s local %.17g %.17g %.17g %.17g global %.17g %.17g %.17g %.17g"
+          " geom %.17g %.17g %.17g %.17g size %.17g %.17g %.17g color %.17g %.17g %.17g %.17g\n",
+          m->Token(), m->GetModelType().c_str(), m->Parent() ? m->Parent()->Token() : "-",
+          l.x, l.y, l.z, l.a, g.x, g.y, g.z, g.a, geom.pose.x, geom.pose.y, geom.pose.z,
+          geom.pose.a, geom.size.x, geom.size.y, geom.size.z, c.r, c.g, c.b, c.a);
+  ModelPosition *p = dynamic_cast<ModelPosition *>(m);
+  if (p)
+    fprintf(out, "ERROR %s %.17g %.17g %.17g %.17g\n", m->Token(), p->integration_error.x,
+            p->integration_error.y, p->integration_error.z, p->integration_error.a);
+  return 0;
+}
+
+static int DumpStep(Model *m, void *) {
+  ModelPosition *p = dynamic_cast<ModelPosition *>(m);
+  if (p) {
+    Pose g = p->GetGlobalPose();
+    fprintf(out, "POSE %llu %s %.17g %.17g %.17g %d\n",
+            (unsigned long long)m->GetWorld()->SimTimeNow(), m->Token(), g.x, g.y, g.a,
+            p->Stalled() ? 1 : 0);
+  }
+  ModelRanger *r = dynamic_cast<ModelRanger *>(m);
+  if (r && !r->GetSensors().empty() && !r->GetSensors()[0].ranges.empty()) {
+    const std::vector<meters_t> &s = r->GetSensors()[0].ranges;
+    fprintf(out, "SCAN %llu %s", (unsigned long long)m->GetWorld()->SimTimeNow(), m->Token());
+    for (size_t i = 0; i < s.size(); i++) fprintf(out, " %.17g", s[i]);
+    fprintf(out, "\n");
+  }
+  return 0;
+}
+
+int main(int argc, char *argv[]) {
+  Stg::Init(&argc, &argv);
+  unsigned short zero[3] = {0, 0, 0};
+  seed48(zero);  // glibc's drand48 state before any srand48: x = 0
+  int steps = 0;
+  const char *drive = NULL, *outpath = NULL, *world_path = NULL;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "-n")) steps = atoi(argv[++i]);
+    else if (!strcmp(argv[i], "-d")) drive = argv[++i];     // "TOKEN VX VA"
+    else if (!strcmp(argv[i], "-o")) outpath = argv[++i];
+    else world_path = argv[i];
+  }
+  out = fopen(outpath, "w");
+  World world("probe");
+  world.Load(world_path);
+  fflush(stdout);
+  world.ForEachDescendant(DumpModel, NULL);
+  if (drive) {
+    char token[256];
+    double vx, va;
+    sscanf(drive, "%255s %lf %lf", token, &vx, &va);
+    ModelPosition *p = dynamic_cast<ModelPosition *>(world.GetModel(token));
+    p->Subscribe();
+    for (int k = 0; k < 16; k++) {
+      char name[300];
+      snprintf(name, sizeof name, "%s.ranger:%d", token, k);
+      Model *r = world.GetModel(name);
+      if (r) r->Subscribe();
+    }
+    p->SetSpeed(vx, 0, va);
+  }
+  world.Start();
+  world.ForEachDescendant(DumpStep, NULL);
+  for (int s = 0; s < steps; s++) {
+    world.Update();
+    world.ForEachDescendant(DumpStep, NULL);
+  }
+  fclose(out);
+  return 0;
+}
