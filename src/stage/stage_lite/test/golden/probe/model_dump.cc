@@ -1,6 +1,15 @@
-// Scratch probe (never in the repository): load a world with the real Stage 4.3.0 as
-// `stage -g` does, with drand48 set to glibc's unseeded state after Stg::Init, then print
-// every model and, per step, every position model's pose and every subscribed ranger's scan.
+// model_dump: a small program linked to the REAL Stage 4.3.0 (built as a peer, never in
+// this repository). It loads a world as `stage -g` does, sets drand48 to glibc's unseeded
+// state after Stg::Init (which seeds it from the clock), prints every model (token, type,
+// parent, local and world pose, geometry, colour; a position model's odometry error) and,
+// after each step, every position model's world pose and stall and every updated ranger's
+// first sensor's ranges (%.17g). ../make_probe_golden.py keeps them (../README.md).
+//   g++ -O2 -std=c++11 $(pkg-config --cflags stage) -I SRC/Stage/libstage -o model_dump \
+//       model_dump.cc $(pkg-config --libs stage)
+//   model_dump [-n STEPS] [-d "TOKEN VX VA"] -o OUT.txt WORLD
+// -d subscribes the robot TOKEN and its rangers (as stageros would) and sets its speed.
+// The odometry error is private to ModelPosition: the access keywords are opened for this
+// one read (a probe only; the class's layout is unchanged).
 #define protected public
 #define private public
 #include "stage.hh"
