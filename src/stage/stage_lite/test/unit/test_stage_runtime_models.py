@@ -1,7 +1,7 @@
-"""Models made at run time (World::CreateModel, SetPose, SetGeom, SetColor) and Stage's two
-controllers that need them or ranger:1: `dynamic` and `wander_accel`, held to the real Stage
-4.3.0 on the repository's worlds (golden/data/dynamic.txt, wander_accel.npz: how they were
-made is in golden/README.md)."""
+"""Models made at run time (World::CreateModel, SetPose, SetGeom, SetColor), Stage's two
+controllers that need them or ranger:1, `dynamic` and `wander_accel`, and acceleration
+control, held to the real Stage 4.3.0 on the repository's worlds (golden/data/dynamic.txt,
+wander_accel.npz, accel.npz: how they were made is in golden/README.md)."""
 import os
 
 import numpy as np
@@ -220,3 +220,25 @@ def test_wander_accel_takes_ranger_1_whatever_its_samples(tmp_path):
     assert world.robots[0].velocity[0] == 0.4        # cruising on ranger:1's 3 beams
     assert world.scheduler.subscribed(model_named(world, 'r.ranger:1'))
     assert not world.scheduler.subscribed(model_named(world, 'r.ranger:0'))
+
+
+def test_acceleration_control_moves_robots_as_the_real_stage():
+    """SetAcceleration, held to the real Stage to the last bit for 10 s: a diff robot
+    speeding up to its velocity bound and stalling on a wall, an omni robot under tighter
+    acceleration and velocity bounds, a car that Stage does not accelerate (it stands)."""
+    real = np.load(os.path.join(DATA, 'accel.npz'))
+    world = load_world(os.path.join(WORLDS, 'accel.world'), stageros=False)
+    commands = {'diff': (0.4, 0.0, 0.0), 'omni': (0.3, 0.5, 0.1), 'car': (0.3, 0.0, 0.1)}
+    for r in world.robots:
+        robot = world.handle(r.model)
+        robot.subscribe()
+        robot.set_acceleration(*commands[r.model.token])
+    assert [r.model.token for r in world.robots] == real['robots'].tolist()
+    for k in range(len(real['t_us'])):
+        if k:
+            world.step()
+        ours = np.array([[r.model.pose[i] for i in (0, 1, 3)] for r in world.robots])
+        assert np.array_equal(ours, real['pose'][0, k]), k
+        assert [int(r.stalled) for r in world.robots] == real['stall'][0, k].tolist(), k
+    assert real['stall'][0, -1].tolist() == [1, 0, 0]
+    assert world.robots[0].velocity[0] == 1.0 and world.robots[1].velocity[:2] == (0.5, 0.5)

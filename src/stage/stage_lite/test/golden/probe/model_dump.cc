@@ -6,8 +6,9 @@
 // first sensor's ranges (%.17g). ../make_probe_golden.py keeps them (../README.md).
 //   g++ -O2 -std=c++11 $(pkg-config --cflags stage) -I SRC/Stage/libstage -o model_dump \
 //       model_dump.cc $(pkg-config --libs stage)
-//   model_dump [-n STEPS] [-d "TOKEN VX VA"] -o OUT.txt WORLD
-// -d subscribes the robot TOKEN and its rangers (as stageros would) and sets its speed.
+//   model_dump [-n STEPS] [-d "TOKEN VX VY VA"].. [-a "TOKEN AX AY AA"].. -o OUT.txt WORLD
+// -d and -a subscribe the robot TOKEN and its rangers (as stageros would) and set its speed
+// (SetSpeed) or its acceleration (SetAcceleration).
 // The odometry error is private to ModelPosition: the access keywords are opened for this
 // one read (a probe only; the class's layout is unchanged).
 #define protected public
@@ -19,6 +20,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 using namespace Stg;
 
 static FILE *out;
@@ -63,10 +66,12 @@ int main(int argc, char *argv[]) {
   unsigned short zero[3] = {0, 0, 0};
   seed48(zero);  // glibc's drand48 state before any srand48: x = 0
   int steps = 0;
-  const char *drive = NULL, *outpath = NULL, *world_path = NULL;
+  std::vector<std::pair<char, std::string> > commands;   // 'd' speed, 'a' acceleration
+  const char *outpath = NULL, *world_path = NULL;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "-n")) steps = atoi(argv[++i]);
-    else if (!strcmp(argv[i], "-d")) drive = argv[++i];     // "TOKEN VX VA"
+    else if (!strcmp(argv[i], "-d") || !strcmp(argv[i], "-a"))   // "TOKEN X Y A"
+      commands.push_back(std::make_pair(argv[i][1], std::string(argv[i + 1]))), ++i;
     else if (!strcmp(argv[i], "-o")) outpath = argv[++i];
     else world_path = argv[i];
   }
@@ -75,10 +80,10 @@ int main(int argc, char *argv[]) {
   world.Load(world_path);
   fflush(stdout);
   world.ForEachDescendant(DumpModel, NULL);
-  if (drive) {
+  for (size_t c = 0; c < commands.size(); c++) {
     char token[256];
-    double vx, va;
-    sscanf(drive, "%255s %lf %lf", token, &vx, &va);
+    double x, y, a;
+    sscanf(commands[c].second.c_str(), "%255s %lf %lf %lf", token, &x, &y, &a);
     ModelPosition *p = dynamic_cast<ModelPosition *>(world.GetModel(token));
     p->Subscribe();
     for (int k = 0; k < 16; k++) {
@@ -87,7 +92,10 @@ int main(int argc, char *argv[]) {
       Model *r = world.GetModel(name);
       if (r) r->Subscribe();
     }
-    p->SetSpeed(vx, 0, va);
+    if (commands[c].first == 'a')
+      p->SetAcceleration(x, y, a);
+    else
+      p->SetSpeed(x, y, a);
   }
   world.Start();
   world.ForEachDescendant(DumpStep, NULL);
