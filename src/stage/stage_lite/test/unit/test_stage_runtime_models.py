@@ -156,6 +156,42 @@ def test_a_model_made_at_run_time_has_stages_defaults_and_is_drawn_once_posed(tm
     assert robot.stalled() and robot.get_pose().x == pytest.approx(0.8, abs=0.06)
 
 
+def test_cameras_and_the_map_see_a_model_made_at_run_time(tmp_path):
+    path = tmp_path / 'cam.world'
+    path.write_text('resolution 0.02\nmodel( pose [ 3.1 0 0 0 ] size [ 0.2 6 1 ] )\n'
+                    'position( size [ 0.3 0.3 0.2 ] camera( resolution [ 32 24 ] ) )\n')
+    world = load_world(str(path))
+    view = world.cameras.views[0]
+    world.step()
+    assert view.depth[12, 16] == pytest.approx(3.0, rel=1e-6)     # the wall's near face
+    floor = world.occupancy()[0].sum()
+    box = world.handle(world.models[0]).world.create_model(None, 'model')
+    box.set_pose((1.6, 0.0, 0.0, 0.0))
+    box.set_geom(Pose(), (0.2, 0.2, 1.0))
+    world.step()
+    assert view.depth[12, 16] == pytest.approx(1.5, rel=1e-6)     # the box's near face
+    assert world.occupancy()[0].sum() > floor
+
+
+def test_a_blobfinder_sees_a_model_made_at_run_time(tmp_path):
+    path = tmp_path / 'blob.world'
+    path.write_text('resolution 0.02\nposition( name "me" size [ 0.4 0.4 0.25 ]'
+                    ' blobfinder( colors_count 1 colors [ "blue" ] ) )\n')
+    world = load_world(str(path), stageros=False)
+    finder = world.handle(model_named(world, 'me.blobfinder:0'))
+    finder.subscribe()
+    world.step()
+    assert finder.blobs == []
+    box = finder.world.create_model(None, 'model')
+    box.set_pose((2.0, 0.0, 0.0, 0.0))
+    box.set_geom(Pose(), (0.5, 0.5, 0.5))
+    box.set_color((0.0, 0.0, 1.0, 1.0))
+    world.step()
+    world.step()
+    assert len(finder.blobs) == 1
+    assert finder.blobs[0].range == pytest.approx(1.75, abs=0.03)    # its near face
+
+
 @pytest.mark.parametrize('parent, kind, what', [
     (None, 'nosuch', 'Model type nosuch not found in model typetable'),
     (None, 'position', 'a position made at run time is not simulated here'),
