@@ -15,7 +15,8 @@ remade once before the next step however many models changed since. A model made
 first step (a controller's init, as Stage's `dynamic`) is drawn exactly where Stage draws
 it. Made during the run, it comes first in a cell where a robot's body drawn before it lies
 too, until that robot's next move (Stage keeps draw order; here static drawings are ordered
-by model index): rays through such a cell may differ for one step.
+by model index): rays through such a cell may differ for one step. A model made but never
+posed nor sized is in no drawing, except the cameras' (their scene draws every static model).
 Not simulated: making a model of another type than `model` (a robot, a sensor), or one in a
 robot's tree (carried by a moving model), and moving or resizing a model of a robot's tree:
 each is one clear ValueError.
