@@ -47,8 +47,8 @@ def dynamic(out, paths):
             if text not in seen:
                 seen.append(text)
     with open(out, 'w') as f:
-        f.write('# the real Stage 4.3.0 on test/worlds/dynamic.world, %d runs of probe/model_dump'
-                ' (see ../README.md)\n' % len(paths))
+        f.write('# the real Stage 4.3.0 on test/worlds/<this file\'s name>.world: %d runs of'
+                ' probe/model_dump (see ../README.md)\n' % len(paths))
         for kind in ('MODEL', 'ERROR'):
             for words in lines(paths[0], kind):
                 f.write(shortest(words) + '\n')

@@ -9,26 +9,33 @@ the top level, the ground model being model:0) and it is listed with the world's
 it is not drawn into the grid until SetPose changes its pose or SetGeom sets its geometry:
 both redraw it and its children (UnMapWithChildren, MapWithChildren) in both layers.
 
-Here such a model is a static body (its tree holds no robot): its drawings join the static
-ones (Space.replace_static, the finders' Sight, the cameras' scene, the floor's occupancy),
+A model whose tree holds no robot stands still: its drawings join the static ones
+(Space.replace_static, the finders' Sight, the cameras' scene, the floor's occupancy),
 remade once before the next step however many models changed since. A model made before the
 first step (a controller's init, as Stage's `dynamic`) is drawn exactly where Stage draws
 it. Made during the run, it comes first in a cell where a robot's body drawn before it lies
 too, until that robot's next move (Stage keeps draw order; here static drawings are ordered
 by model index): rays through such a cell may differ for one step. A model made but never
 posed nor sized is in no drawing, except the cameras' (their scene draws every static model).
-Not simulated: making a model of another type than `model` (a robot, a sensor), or one in a
-robot's tree (carried by a moving model), and moving or resizing a model of a robot's tree:
-each is one clear ValueError.
+A model made in a robot's tree (`dynamic` on a position model) rides on the robot, its
+blocks the robot's (moved, drawn and tested for collisions with it): made, moved and resized
+before the first step only, when the grid and the robots' kernels are made again, every
+drawing then a load-time one in model order (Stage's order).
+Not simulated: making a model of another type than `model` (a robot, a sensor), one in a
+robot's tree after the first step, and moving or resizing a model a robot carries that the
+world file made: each is one clear ValueError.
 """
 import math
 import os
 
 import numpy as np
 
+from . import world_load
 from .models import Model
+from .motion import Motion
 from .pose import stage_normalize
 from .sight import Sight
+from .space import Space
 from .world_load import BUILTIN_TYPES, _static_cells
 
 #: The types World.create_model makes (Stage's typetable holds more: see BUILTIN_TYPES).
@@ -46,10 +53,10 @@ def create_model(world, parent, kind):
     if kind not in CREATABLE_TYPES:
         raise ValueError('a %s made at run time is not simulated here (only %s)'
                          % (kind, ', '.join(CREATABLE_TYPES)))
-    if parent is not None and _moves(world, parent):
-        raise ValueError('%s moves (it is in robot %s\'s tree): models made at run time'
-                         ' are not simulated on a moving model' % (parent.token,
-                                                                  parent.root.token))
+    if parent is not None and _moves(world, parent) and world.updates:
+        raise ValueError('%s moves (it is in robot %s\'s tree): models are made on a moving'
+                         ' model before the first step only' % (parent.token,
+                                                                 parent.root.token))
     world_dir = os.path.dirname(os.path.abspath(world.path))
     m = Model(world_dir, parent, kind, len(world.models), None, _top_counts(world))
     m.mapped = False                  # drawn from its first SetPose or SetGeom on
@@ -63,7 +70,7 @@ def set_pose(world, model, pose):
     x, y, z, a = _finite(model, 'pose', pose)
     if (x, y, z, a) == tuple(model.pose):
         return
-    _static_only(world, model, 'moved')
+    _may_change(world, model, 'moved')
     model.pose = (x, y, z, stage_normalize(a))
     _redraw(world, model)
 
@@ -73,7 +80,7 @@ def set_geom(world, model, pose, size):
     and its children redrawn."""
     pose = _finite(model, 'geom pose', pose)
     size = _finite(model, 'geom size', size)
-    _static_only(world, model, 'resized')
+    _may_change(world, model, 'resized')
     model.set_geom(pose, size)
     _redraw(world, model)
 
@@ -88,13 +95,18 @@ def set_color(world, model, color):
 def redraw_if_changed(world):
     """The static drawings remade (grid, finders, cameras, floor) if a model was made,
     moved or resized since they were last made; before a step."""
-    if not world.__dict__.pop('_statics_changed', False):
+    statics_changed = world.__dict__.pop('_statics_changed', False)
+    trees_changed = world.__dict__.pop('_trees_changed', False)
+    if not (statics_changed or trees_changed):
         return
     moving = set(np.flatnonzero(world._robot_slot[world._root_of] >= 0).tolist())
     statics = [m for m in world.models
                if m.index not in moving and getattr(m, 'mapped', True)]
     cells = _static_cells(statics, set(), world.ppm)
-    world.space.replace_static(cells)
+    if trees_changed:
+        _rebuild_grid(world, moving, cells)
+    else:
+        world.space.replace_static(cells)
     world._statics = statics
     world._static_cells = (cells[0].astype(np.int32), cells[1].astype(np.int32))
     world._occupancy = None
@@ -102,6 +114,23 @@ def redraw_if_changed(world):
     if world.cameras.scene is not None:
         from .camera_render import Scene  # numba's kernels only when a world has cameras
         world.cameras.scene = Scene(world.models, moving, world.ppm)
+
+
+def _rebuild_grid(world, moving, static_cells):
+    """A new grid with the robots' trees as they now are (before the first step: every
+    drawing is a load-time one, in model order, the models made since last), and the
+    robots' kernels on it."""
+    old = world.space
+    drawn = [m for m in world.models if getattr(m, 'mapped', True)]
+    dynamic, coll = world_load._moving_blocks(drawn, moving, world.ppm)
+    space = Space(world.ppm, len(world.models), old.model_root, old.model_rr,
+                  old.model_obstacle)
+    space.build(static_cells, world._ray_zs, dynamic, coll, world_load._extent(dynamic))
+    world_load._assign_blocks(world.robots, dynamic)
+    world_load._draw_at_start(space, world.robots)
+    world.space = space
+    if world.motion is not None:
+        world.motion = Motion(world.robots, space)
 
 
 def _list(world, m):
@@ -146,7 +175,7 @@ def _redraw(world, model):
         m = stack.pop()
         m.mapped = True
         stack.extend(m.children)
-    world.__dict__['_statics_changed'] = True
+    world.__dict__['_trees_changed' if _moves(world, model) else '_statics_changed'] = True
 
 
 def _moves(world, model):
@@ -154,10 +183,15 @@ def _moves(world, model):
     return bool(world._robot_slot[world._root_of[model.index]] >= 0)
 
 
-def _static_only(world, model, what):
-    if _moves(world, model):
-        raise ValueError('%s is in robot %s\'s tree: a carried model %s at run time is not'
-                         ' simulated here' % (model.token, model.root.token, what))
+def _may_change(world, model, what):
+    """A model a robot carries is moved or resized only if it was made at run time, and
+    before the first step."""
+    if not _moves(world, model):
+        return
+    if not hasattr(model, 'mapped') or world.updates:
+        raise ValueError('%s is in robot %s\'s tree: a carried model is %s only if made at'
+                         ' run time, before the first step' % (model.token,
+                                                                model.root.token, what))
 
 
 def _finite(model, what, values):
