@@ -11,7 +11,8 @@ and prints per world:
   and the first step at which stage_lite differs from each real run (its poses are compared
   bit for bit over the first 100 steps the golden data keeps at float64);
 - per swarm statistic (path length, moving share, speed; alignment and spacing when
-  flocking), at how many of the one-second times stage_lite lies within the real runs'
+  flocking; for the foraging worlds the mean distance to the nearest source and sink and
+  the flags delivered per sink), at how many of the one-second times stage_lite lies within the real runs'
   min..max, and the figures at the last time;
 - load and run times (on a machine shared with nothing else, this is also a speed figure).
 """
@@ -59,11 +60,14 @@ def check(world, folder, seconds):
         t0 = time.perf_counter()
         w = load_world(os.path.basename(path), stageros=False, model_order=order)
         load_s = time.perf_counter() - t0
+        sinks = [m for m in w.models if m.parent is None and m.token.endswith('sink')]
         poses = [[r.pose for r in w.robots]]
+        held = [[len(m.flags) for m in sinks]]
         t0 = time.perf_counter()
         for _ in range(steps):
             w.step()
             poses.append([r.pose for r in w.robots])
+            held.append([len(m.flags) for m in sinks])
         run_s = time.perf_counter() - t0
     finally:
         os.chdir(here)
@@ -72,7 +76,13 @@ def check(world, folder, seconds):
     n = min(prefix.shape[1], poses.shape[0])
     t_s = np.arange(poses.shape[0]) * dt
     times = np.array([t for t in data['stat_t_s'].astype(float) if t <= t_s[-1] + 1e-9])
-    ours = swarm_stats.swarm_stats(t_s, poses, times, flocking=world in FLOCKING)
+    places = {k: np.array(v) for k, v in meta.get('places', {}).items()}
+    ours = swarm_stats.swarm_stats(t_s, poses, times, flocking=world in FLOCKING,
+                                   places=places)
+    if places and sinks:     # what each sink holds beyond its start, as make_golden.py counts
+        held = np.array(held)
+        idx = swarm_stats.state_index(t_s, times)
+        ours['delivered_per_sink'] = (held[idx] - held[:1]).mean(axis=1)
     stats = {}
     for name, values in ours.items():
         key = 'stat_' + name

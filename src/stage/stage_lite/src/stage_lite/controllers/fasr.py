@@ -26,7 +26,7 @@ import math
 
 from stage_lite.model.stage_api import normalize
 
-from ._avoid import beam_rule
+from ._avoid import avoid_step, beam_rule
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -182,16 +182,10 @@ class Forager:
 
     def obstacle_avoid(self):
         """True while avoiding (speed and turn set here)."""
-        obstruction, stop, min_left, min_right = scan_rule(self.laser.sensors[0].ranges)
-        if not (obstruction or stop or self.avoid_count > 0):
-            return False
-        pos = self.pos
-        pos.set_x_speed(0.0 if stop else AVOID_SPEED)
-        if self.avoid_count < 1:
-            self.avoid_count = pos.world.random() % AVOID_DURATION + AVOID_DURATION
-            pos.set_turn_speed(-AVOID_TURN if min_left < min_right else AVOID_TURN)
-        self.avoid_count -= 1
-        return True
+        busy, self.avoid_count = avoid_step(
+            self.pos, self.laser.sensors[0].ranges, self.avoid_count, MIN_FRONT_DISTANCE,
+            STOP_DISTANCE, AVOID_SPEED, AVOID_TURN, AVOID_DURATION)
+        return busy
 
     # ---- the other callbacks -------------------------------------------------------------
     def position_update(self, pos, _):

@@ -94,6 +94,15 @@ class WorldApi:
         """The next `count` values of random(), in order (an int64 array)."""
         return self._world.random.block(count)
 
+    def srandom(self, seed):
+        """srandom(seed): random()'s stream starts again from seed."""
+        self._world.random.srandom(seed)
+
+    @property
+    def seed(self):
+        """The world's seed (load_world's), None if it was given none."""
+        return self._world.seed
+
     def drand48(self):
         return self._world.rand48.drand48()
 
@@ -171,6 +180,10 @@ class ModelApi:
     @property
     def color(self):
         return self._model.color
+
+    def set_color(self, color):
+        """Model::SetColor: (r, g, b, a)."""
+        self._model.color = tuple(float(c) for c in color)
 
     def rasterize(self, width, height, cell_w, cell_h):
         """Model::Rasterize: the outlines of its blocks in a width x height raster of
