@@ -12,8 +12,8 @@ and prints per world:
   bit for bit over the first 100 steps the golden data keeps at float64);
 - per swarm statistic (path length, moving share, speed; alignment and spacing when
   flocking; for the foraging worlds the mean distance to the nearest source and sink and
-  the flags delivered per sink), at how many of the one-second times stage_lite lies within the real runs'
-  min..max, and the figures at the last time;
+  the flags delivered per sink, also every minute), at how many of the one-second times
+  stage_lite lies within the real runs' min..max, and the figures at the last time;
 - load and run times (on a machine shared with nothing else, this is also a speed figure).
 """
 import argparse
@@ -84,6 +84,7 @@ def check(world, folder, seconds):
         idx = swarm_stats.state_index(t_s, times)
         ours['delivered_per_sink'] = (held[idx] - held[:1]).mean(axis=1)
     stats = {}
+    course = []
     for name, values in ours.items():
         key = 'stat_' + name
         if name == 't_s' or key not in data.files:
@@ -93,7 +94,11 @@ def check(world, folder, seconds):
         inside = (values >= lo - 1e-6) & (values <= hi + 1e-6)
         stats[name] = (int(inside.sum()), len(inside), float(values[-1]), float(lo[-1]),
                        float(hi[-1]))
-    return dict(world=world, robots=len(w.robots), runs=int(prefix.shape[0]),
+        if name == 'delivered_per_sink':     # deliveries come late: the whole course
+            course = [(t, values[i], lo[i], hi[i]) for i, t in enumerate(times)
+                      if t > 0 and t % 60 == 0]
+    return dict(world=world, robots=len(w.robots), course=course,
+                runs=int(prefix.shape[0]),
                 real_parting=meta['parting_state']['1e-9'],
                 ours=[first_difference(poses[:n], prefix[r, :n]) for r in range(prefix.shape[0])],
                 prefix=n - 1, seconds=steps * dt, load_s=load_s, run_s=run_s, stats=stats)
@@ -129,6 +134,9 @@ def main(argv=None):
         print('| %s | %d | %s | %s | %s | %.0f s in %.1f s (load %.1f s) |'
               % (r['world'], r['robots'], r['real_parting'], ours, stats, r['seconds'],
                  r['run_s'], r['load_s']), flush=True)
+        if r['course']:
+            print('|  | flags delivered per sink at %s |' % ', '.join(
+                '%.0f s: %.3g (real %.3g..%.3g)' % c for c in r['course']), flush=True)
 
 
 if __name__ == '__main__':

@@ -27,6 +27,7 @@ import math
 from stage_lite.model.stage_api import normalize
 
 from ._avoid import avoid_step, beam_rule
+from ._dock import approach
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -43,10 +44,6 @@ SINK_RADIUS = 1.0         # m
 CHARGER_ID = 2            # the charging stations' fiducial_return
 HUNGRY = 0.25             # of the pack's capacity
 FULL = 0.95
-DOCK_NEAR = 0.5           # m: closer than this, creep
-DOCK_CREEP = 0.02         # m/s
-DOCK_CLOSE = 0.08         # m: stop
-DOCK_BACK = -0.01         # m/s when stalled against it
 UNDOCK_DISTANCE = 0.3     # m
 UNDOCK_SPEED = -0.05      # m/s
 
@@ -145,18 +142,8 @@ class Forager:
     def dock(self):
         pos = self.pos
         if self.charger_ahoy:
-            a_goal = normalize(self.charger_bearing)
-            if self.charger_range > DOCK_NEAR:
-                if not self.obstacle_avoid():
-                    pos.set_x_speed(CRUISE_SPEED)
-                    pos.set_turn_speed(a_goal)
-            else:
-                pos.set_turn_speed(a_goal)
-                pos.set_x_speed(DOCK_CREEP)
-                if self.charger_range < DOCK_CLOSE:
-                    pos.stop()
-                if pos.stalled():
-                    pos.set_x_speed(DOCK_BACK)
+            approach(pos, self.charger_range, normalize(self.charger_bearing),
+                     self.obstacle_avoid)
         else:
             pos.stop()
             self.mode = MODE_WORK

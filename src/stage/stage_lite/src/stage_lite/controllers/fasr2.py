@@ -48,6 +48,7 @@ from stage_lite.model.stage_api import Pose, normalize
 
 from ._astar import BLOCKED, astar
 from ._avoid import avoid_step
+from ._dock import approach
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -66,10 +67,6 @@ LEAVE_CHANCE = 0.0005     # per update while waiting at a source
 CHARGER_ID = 2
 HUNGRY = 0.2
 FULL = 0.95
-CREEP_DISTANCE = 0.5      # m: closer than this, creep to the charger
-DOCK_CREEP = 0.02         # m/s
-DOCK_CLOSE = 0.08         # m: docked
-DOCK_BACK = -0.01         # m/s when stalled against it
 BACK_OFF_DISTANCE = 0.2   # m
 BACK_OFF_SPEED = -0.02    # m/s
 UNDOCK_TURN = 0.3         # rad/s
@@ -155,9 +152,10 @@ class Shared:
         world.srandom(world.seed if world.seed is not None else 1)
         self.tasks = []
         for colour in colours:
-            ends = [world.get_model(colour + end) for end in ('_source', '_sink')]
-            for end, m in zip(('_source', '_sink'), ends):
-                if m is None:
+            ends = []
+            for end in ('_source', '_sink'):
+                ends.append(world.get_model(colour + end))
+                if ends[-1] is None:
                     raise LookupError('fasr2\'s task "%s" needs a model named "%s%s"'
                                       % (colour, colour, end))
             self.tasks.append(Task(*ends))
@@ -358,19 +356,9 @@ class Robot:
         if self.charger_ahoy:
             orient = normalize(math.pi - (self.charger_bearing - self.charger_heading))
             a_goal = normalize(self.charger_bearing - 2.0 * orient)
-            if self.charger_range > CREEP_DISTANCE:
-                if not self.obstacle_avoid():
-                    pos.set_x_speed(CRUISE_SPEED)
-                    pos.set_turn_speed(a_goal)
-            else:
-                pos.set_turn_speed(a_goal)
-                pos.set_x_speed(DOCK_CREEP)
-                if self.charger_range < DOCK_CLOSE:
-                    pos.stop()
-                    self.docked_angle = pos.get_pose().a
-                    self.enable('laser', False)
-                if pos.stalled():
-                    pos.set_x_speed(DOCK_BACK)
+            if approach(pos, self.charger_range, a_goal, self.obstacle_avoid):
+                self.docked_angle = pos.get_pose().a
+                self.enable('laser', False)
         else:
             pos.stop()
             self.enable('fiducial', False)
