@@ -1,12 +1,13 @@
 """stage_lite on Stage 4.3.0's own worlds, held to the real Stage's runs of them, no ROS.
 
-Run: `./ws bench stage_worlds_fidelity --worlds STAGE/worlds [--seconds S] [WORLD ...]` with
-STAGE/worlds a copy of Stage v4.3.0's worlds/ folder (GPL-2, not in this repository: see
-src/stage/stage_lite/test/golden/stage_worlds/README.md); without it the bench says so and
-does nothing. For each world with golden data (stage_worlds/<world>.npz, the real Stage's own
-runs), stage_lite runs it as `stage -g` does, in Stage's model order (model_order.json, read
-from a real run), for S simulated seconds (default: as long as the real runs, at most 60 s),
-and prints per world:
+Run: `./ws bench stage_worlds_fidelity --worlds STAGE/worlds [--seconds S] [--seed N]
+[WORLD ...]` with STAGE/worlds a copy of Stage v4.3.0's worlds/ folder (GPL-2, not in this
+repository: see src/stage/stage_lite/test/golden/stage_worlds/README.md); without it the
+bench says so and does nothing. For each world with golden data (stage_worlds/<world>.npz,
+the real Stage's own runs), stage_lite runs it as `stage -g` does, in Stage's model order
+(model_order.json, read from a real run), seeded with N (load_world's seed: random()'s and
+drand48's streams; default none, an unseeded process's, as Stage's random() is), for S
+simulated seconds (default: as long as the real runs, at most 60 s), and prints per world:
 - where the real runs part from each other (first step two runs differ by more than 1e-9 m),
   and the first step at which stage_lite differs from each real run (its poses are compared
   bit for bit over the first 100 steps the golden data keeps at float64);
@@ -42,7 +43,7 @@ def first_difference(ours, real):
     return int(np.argmax(apart)) if apart.any() else None
 
 
-def check(world, folder, seconds):
+def check(world, folder, seconds, seed=None):
     """One world's line of figures (a dict)."""
     import numpy as np
     from stage_lite.model.world import load_world
@@ -58,7 +59,7 @@ def check(world, folder, seconds):
     os.chdir(os.path.dirname(path))      # worlds name their .inc and bitmaps from there
     try:
         t0 = time.perf_counter()
-        w = load_world(os.path.basename(path), stageros=False, model_order=order)
+        w = load_world(os.path.basename(path), seed=seed, stageros=False, model_order=order)
         load_s = time.perf_counter() - t0
         sinks = [m for m in w.models if m.parent is None and m.token.endswith('sink')]
         poses = [[r.pose for r in w.robots]]
@@ -108,6 +109,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--worlds', help="a copy of Stage v4.3.0's worlds/ folder")
     parser.add_argument('--seconds', type=float, default=MAX_SECONDS)
+    parser.add_argument('--seed', type=int, help='the worlds\' seed (default: none)')
     parser.add_argument('names', nargs='*', help='worlds (default: every golden one)')
     args, _ = parser.parse_known_args(argv)   # ./ws bench passes other benches' options too
     if not args.worlds or not os.path.isdir(args.worlds):
@@ -125,7 +127,7 @@ def main(argv=None):
         if world not in known:
             sys.exit('unknown world %s (golden ones: %s)' % (world, ', '.join(known)))
         try:
-            r = check(world, args.worlds, args.seconds)
+            r = check(world, args.worlds, args.seconds, args.seed)
         except WorldError as err:    # a controller not ported yet (fasr2): say so, go on
             print('| %s | | | not run: %s | | |' % (world, err), flush=True)
             continue
