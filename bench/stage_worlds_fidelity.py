@@ -128,7 +128,7 @@ def main(argv=None):
             sys.exit('unknown world %s (golden ones: %s)' % (world, ', '.join(known)))
         try:
             r = check(world, args.worlds, args.seconds, args.seed)
-        except WorldError as err:    # a controller not ported yet (fasr2): say so, go on
+        except WorldError as err:    # a world stage_lite cannot run: say so, go on
             print('| %s | | | not run: %s | | |' % (world, err), flush=True)
             continue
         ours = ', '.join('never (of %d)' % r['prefix'] if s is None else str(s) for s in r['ours'])
