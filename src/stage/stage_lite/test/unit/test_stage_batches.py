@@ -1,7 +1,7 @@
 """The step's kernels and batches do what the world's one-by-one code does, to the last bit:
-every robot's update and move (motion.py) against World._step_each (power packs too), the fiducial finders'
-kernel against Fiducial.update_one_by_one, and the controllers' batches (expand_swarm,
-pioneer_flocking) against their callbacks called one by one."""
+every robot's update and move (motion.py) against World._step_each (power packs too), the
+fiducial finders' kernel against Fiducial.update_one_by_one, and the controllers' batches
+(expand_swarm, pioneer_flocking) against their callbacks called one by one."""
 import os
 
 import numpy as np
