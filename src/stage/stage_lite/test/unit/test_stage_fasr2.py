@@ -6,6 +6,7 @@ import math
 import os
 
 import pytest
+from stage_lite.controllers import _fasr2_plans as plans
 from stage_lite.controllers import fasr2
 from stage_lite.controllers._dock import DOCK_CLOSE
 from stage_lite.model.stage_api import Flag, normalize
@@ -48,15 +49,16 @@ def step_until(w, done, limit):
 
 # ---- the grid and the plans ------------------------------------------------------------------
 def test_cells_are_the_maps_32nds_from_its_corner_and_nodes_their_centres():
-    assert [fasr2.meters_to_cell(m, 100.0, 32) for m in (-50.0, -46.876, -46.875, 0.0, 49.99)] == \
+    cells = [plans.meters_to_cell(m, 100.0, 32) for m in (-50.0, -46.876, -46.875, 0.0, 49.99)]
+    assert cells == \
         [0, 0, 1, 16, 31]
-    assert fasr2.cell_to_meters(0, 100.0, 32) == -50.0 + 100.0 / 64
-    assert fasr2.cell_to_meters(16, 16.0, 32) == 0.25
+    assert plans.cell_to_meters(0, 100.0, 32) == -50.0 + 100.0 / 64
+    assert plans.cell_to_meters(16, 16.0, 32) == 0.25
 
 
 def test_the_grid_is_the_caves_outline_raster_free_1_blocked_9(world):
     costs = shared_of(world).costs.reshape(32, 32)
-    assert set(costs.ravel().tolist()) == {1, fasr2.BLOCKED}
+    assert set(costs.ravel().tolist()) == {1, plans.BLOCKED}
     # the frame, and the wall at x = 0 from the south edge up to y = 3 (row 22), not above
     assert (costs[0] == 9).all() and (costs[31] == 9).all() and (costs[:, 0] == 9).all()
     assert (costs[1:22, 15:17] == 9).all() and (costs[23:31, 1:31] == 1).all()
@@ -68,7 +70,7 @@ def test_a_plan_goes_round_the_wall_and_is_kept_for_its_pair_of_cells(world):
     start, goal = (6, 6), (26, 6)            # the source's and the sink's cells
     plan = shared.plan(start, goal)
     assert shared.plan(start, goal) is plan and shared.misses == 1
-    centre = [fasr2.cell_to_meters(c, 16.0, 32) for c in range(32)]
+    centre = [plans.cell_to_meters(c, 16.0, 32) for c in range(32)]
     assert (plan.xs[0], plan.ys[0]) == (centre[26], centre[6])     # the goal first: value 0
     assert (plan.xs[-1], plan.ys[-1]) == (centre[6], centre[6])
     assert plan.ys.max() > 3.0                                # over the wall's end
@@ -77,16 +79,16 @@ def test_a_plan_goes_round_the_wall_and_is_kept_for_its_pair_of_cells(world):
 
 
 def test_a_failed_plan_gives_no_advice():
-    empty = fasr2.Plan([], [])
+    empty = plans.Plan([], [])
     assert empty.good_direction(0.0, 0.0) is None
 
 
 def test_the_good_direction_is_the_least_valued_node_within_5_m_plus_a_quarter_radian():
     # values by index: the goal (0) is 6 m away, node 1 at 4.9 m, node 2 nearer still
-    plan = fasr2.Plan([6.0, 0.0, 1.0], [0.0, 4.9, 0.0])
+    plan = plans.Plan([6.0, 0.0, 1.0], [0.0, 4.9, 0.0])
     assert plan.good_direction(0.0, 0.0) == pytest.approx(math.pi / 2 + 0.25)
-    assert fasr2.Plan([6.0, 0.0], [0.0, 5.0]).good_direction(0.0, 0.0) is None
-    assert fasr2.Plan([-1.0], [-1e-9]).good_direction(0.0, 0.0) == normalize(
+    assert plans.Plan([6.0, 0.0], [0.0, 5.0]).good_direction(0.0, 0.0) is None
+    assert plans.Plan([-1.0], [-1e-9]).good_direction(0.0, 0.0) == normalize(
         math.atan2(-1e-9, -1.0) + 0.25)                        # wrapped round
 
 
@@ -221,6 +223,8 @@ def variant(tmp_path, old, new):
     ('name "fuel_zone"', 'name "fuel"', 'fasr2 needs a model named "fuel_zone"'),
     ('sonar_ring( ) laser', 'laser', 'has no ranger:1 (the laser fasr2 reads)'),
     ('kjoules 400 kjoules_capacity 400 ', '', 'has no power pack'),
+    ('define laser ranger ( sensor( range [ 0 2 ] fov 180 samples 32 ) )',
+     'define laser ranger ( )', "ranger:1 has no sensor (fasr2 reads its first)"),
     ('sonar_ring( ) laser( pose [ 0 0 -0.1 0 ] )', 'sonar_ring( )',
      'has no ranger:1 (the laser fasr2 reads)'),
     ('  bump( fiducial( range_max_id 9 range_max 9 fov 180 pose [ 0 0 -0.05 0 ] ) )\n', '',

@@ -27,7 +27,7 @@ import math
 from stage_lite.model.stage_api import normalize
 
 from ._avoid import avoid_step, beam_rule
-from ._dock import approach
+from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -62,7 +62,6 @@ REFUEL = ((0, 0, 45, 120),
           (-90, -90, 180, 180),
           (-90, -180, -90, -90))
 
-MODE_WORK, MODE_DOCK, MODE_UNDOCK = 'work', 'dock', 'undock'
 
 
 def init(model, args):
@@ -106,14 +105,9 @@ class Forager:
             raise LookupError('%s carries no unused fiducial finder' % position.token)
         self.source = source
         self.sink = sink
-        self.avoid_count = 0
+        start_working(self)
         self.work_get = 0
         self.work_put = 0
-        self.charger_ahoy = False
-        self.charger_bearing = 0.0
-        self.charger_range = 0.0
-        self.charger_heading = 0.0
-        self.mode = MODE_WORK
         self.at_dest = False
         position.add_callback('update', self.position_update)
         position.subscribe()
@@ -131,12 +125,7 @@ class Forager:
 
     # ---- the modes -----------------------------------------------------------------------
     def laser_update(self, laser, _):
-        if self.mode == MODE_DOCK:
-            self.dock()
-        elif self.mode == MODE_WORK:
-            self.work()
-        else:
-            self.undock()
+        run_mode(self)
         return False
 
     def dock(self):

@@ -41,14 +41,11 @@ Stage loops forever (hungry with a plan that never gives advice) this raises ins
 import math
 import weakref
 
-import numpy as np
-
-from stage_lite.model.jit import njit
 from stage_lite.model.stage_api import Pose, normalize
 
-from ._astar import BLOCKED, astar
 from ._avoid import avoid_step
-from ._dock import approach
+from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
+from ._fasr2_plans import Shared
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -57,11 +54,7 @@ MIN_FRONT_DISTANCE = 0.7  # m
 STOP_DISTANCE = 0.5       # m
 AVOID_DURATION = 10       # updates, at least
 PAYLOAD = 1               # flags carried at most
-MAP_CELLS = 32            # the planner's grid, each way
-MAP_MODEL = 'cave'
 FUEL_ZONE = 'fuel_zone'
-ADVICE_RANGE = 5.0        # m: plan nodes farther away give no advice
-LANE_BIAS = 0.25          # rad to the left of the best node
 REPLAN_MOVE = 0.5         # m the goal may move before a replan
 LEAVE_CHANCE = 0.0005     # per update while waiting at a source
 CHARGER_ID = 2
@@ -75,7 +68,6 @@ WAIT_DISTANCE = 0.2       # m behind
 BACK_SONARS = range(10, 14)
 DELIVERED_COLOR = (0.0, 1.0, 0.0, 1.0)
 
-MODE_WORK, MODE_DOCK, MODE_UNDOCK = 'work', 'dock', 'undock'
 
 _worlds = weakref.WeakKeyDictionary()     # WorldApi -> Shared
 
@@ -93,99 +85,6 @@ def init(model, args):
     return Robot(model, fuel, shared)
 
 
-def meters_to_cell(m, size_m, cells):
-    """fasr2's MetersToCell: shifted by half the size, scaled, floored."""
-    return math.floor((m + size_m / 2.0) / (size_m / float(cells)))
-
-
-def cell_to_meters(c, size_m, cells):
-    """fasr2's CellToMeters: the centre of cell c."""
-    cell = size_m / float(cells)
-    return c * cell - size_m / 2.0 + cell / 2.0
-
-
-def cost_grid(raster):
-    """The planner's costs from a raster: 0 (free) -> 1, 1 (an outline) -> 9."""
-    grid = np.frombuffer(bytes(raster), np.uint8)
-    return np.where(grid == 0, 1, BLOCKED).astype(np.uint8)
-
-
-class Task:
-    def __init__(self, source, sink):
-        self.source = source
-        self.sink = sink
-        self.participants = 0
-
-
-class Plan:
-    """A planned path: its nodes' centres (goal first, so a node's index is its value, the
-    steps from it to the goal)."""
-
-    def __init__(self, xs, ys):
-        self.xs = np.asarray(xs, np.float64)
-        self.ys = np.asarray(ys, np.float64)
-
-    def good_direction(self, x, y, within=ADVICE_RANGE):
-        """Graph::GoodDirection: the heading to the best node in range, plus the lane bias;
-        None for no advice."""
-        best = _best_node(self.xs, self.ys, x, y, within)
-        if best < 0:
-            return None
-        return normalize(math.atan2(self.ys[best] - y, self.xs[best] - x) + LANE_BIAS)
-
-
-@njit(cache=True)
-def _best_node(xs, ys, x, y, within):
-    # values rise with the index: the first node in range has the least
-    for i in range(xs.shape[0]):
-        if math.hypot(xs[i] - x, ys[i] - y) < within:
-            return i
-    return -1
-
-
-class Shared:
-    """What fasr2's robots share (Stage's statics): the tasks, the grid and the plans."""
-
-    def __init__(self, world, colours):
-        if not colours:
-            raise ValueError('fasr2 needs at least one task colour: ctrl "fasr2 red green ..."')
-        world.srandom(world.seed if world.seed is not None else 1)
-        self.tasks = []
-        for colour in colours:
-            ends = []
-            for end in ('_source', '_sink'):
-                ends.append(world.get_model(colour + end))
-                if ends[-1] is None:
-                    raise LookupError('fasr2\'s task "%s" needs a model named "%s%s"'
-                                      % (colour, colour, end))
-            self.tasks.append(Task(*ends))
-        cave = world.get_model(MAP_MODEL)
-        if cave is None:
-            raise LookupError('fasr2 plans on a model named "%s": there is none' % MAP_MODEL)
-        _, size = cave.get_geom()
-        self.size = size
-        self.costs = cost_grid(cave.rasterize(MAP_CELLS, MAP_CELLS, size[0] / float(MAP_CELLS),
-                                              size[1] / float(MAP_CELLS)))
-        self.plans = {}
-        self.misses = 0
-
-    def cell(self, pose):
-        return (meters_to_cell(pose.x, self.size[0], MAP_CELLS),
-                meters_to_cell(pose.y, self.size[1], MAP_CELLS))
-
-    def plan(self, start, goal):
-        """The plan from cell start to cell goal, planned at its first asking."""
-        key = (start, goal)
-        plan = self.plans.get(key)
-        if plan is None:
-            self.misses += 1
-            path = astar(self.costs, MAP_CELLS, MAP_CELLS, start, goal)[::-1]
-            plan = self.plans[key] = Plan(
-                [cell_to_meters(c[0], self.size[0], MAP_CELLS) for c in path],
-                [cell_to_meters(c[1], self.size[1], MAP_CELLS) for c in path])
-        return plan
-
-
 class Robot:
     """One robot's state: its task, goal, plan, mode, avoid count and charger."""
 
@@ -200,6 +99,10 @@ class Robot:
                         ('unused fiducial finder', self.finder)):
             if m is None:
                 raise LookupError('%s has no %s' % (pos.token, what))
+        if not self.laser.sensors:
+            raise LookupError('%s\'s ranger:1 has no sensor (fasr2 reads its first)'
+                              % pos.token)
+        self.scan = self.laser.sensors[0]
         if len(self.sonar.sensors) <= BACK_SONARS[-1]:
             raise LookupError('%s\'s sonar has %d sensors: fasr2 reads sensors %d to %d'
                               % (pos.token, len(self.sonar.sensors), BACK_SONARS[0],
@@ -209,12 +112,7 @@ class Robot:
         self.wait_started_at = -1
         self.task = pos.world.random() % len(shared.tasks)
         self.fuel_zone = fuel_zone
-        self.avoid_count = 0
-        self.charger_ahoy = False
-        self.charger_bearing = 0.0
-        self.charger_range = 0.0
-        self.charger_heading = 0.0
-        self.mode = MODE_WORK
+        start_working(self)
         self.docked_angle = 0.0
         self.goal = shared.tasks[self.task].source
         self.cached_goal_pose = Pose()
@@ -269,7 +167,7 @@ class Robot:
                 return False
         elif self.goal is task.sink:
             self.at_sink(pos, pose)
-        {MODE_DOCK: self.dock, MODE_WORK: self.work, MODE_UNDOCK: self.undock}[self.mode]()
+        run_mode(self)
         return False
 
     def see_charger(self):
@@ -318,7 +216,7 @@ class Robot:
     # ---- the modes -----------------------------------------------------------------------
     def obstacle_avoid(self):
         busy, self.avoid_count = avoid_step(
-            self.pos, self.laser.sensors[0].ranges, self.avoid_count, MIN_FRONT_DISTANCE,
+            self.pos, self.scan.ranges, self.avoid_count, MIN_FRONT_DISTANCE,
             STOP_DISTANCE, AVOID_SPEED, AVOID_TURN, AVOID_DURATION)
         return busy
 
