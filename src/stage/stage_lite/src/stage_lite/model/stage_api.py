@@ -105,6 +105,15 @@ class WorldApi:
         """The next `count` values of random(), in order (an int64 array)."""
         return self._world.random.block(count)
 
+    def srandom(self, seed):
+        """srandom(seed): random()'s stream starts again from seed."""
+        self._world.random.srandom(seed)
+
+    @property
+    def seed(self):
+        """The world's seed (load_world's), None if it was given none."""
+        return self._world.seed
+
     def drand48(self):
         return self._world.rand48.drand48()
 
