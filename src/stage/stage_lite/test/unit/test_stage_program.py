@@ -1,8 +1,11 @@
 """Stage's own program, `stage [-g] [-c] [-a ARGS] WORLD`, run as a user runs it (no ROS)."""
+import os
+import signal
 
 import pytest
 from course_common.processes import run_to_exit, spawn
 from course_common.testing import wait_for
+from course_common.waiting import WaitError
 from stage_lite.node.stage_program import clock_line
 
 RUN_DEADLINE_S = 60.0
@@ -76,12 +79,21 @@ def test_a_world_stage_refuses_is_one_fatal_line(tmp_path):
 
 
 def test_ctrl_c_ends_it_at_once_without_a_traceback(tmp_path):
-    proc = spawn(['stage', '-g', '-c', world(tmp_path, 'quit_time 0\nshow_clock_interval 10')])
+    # faulthandler: if it ever outlives Ctrl-C, SIGABRT makes it print where each thread is
+    proc = spawn(['stage', '-g', '-c', world(tmp_path, 'quit_time 0\nshow_clock_interval 10')],
+                 env={'PYTHONFAULTHANDLER': '1'})
     try:
         wait_for(lambda: proc.output().count('\r[Stage:') >= 2, RUN_DEADLINE_S,
                  'stage stepping; output:\n%s' % proc.output(), alive=proc.alive)
         proc.interrupt()
-        assert proc.wait_exit(RUN_DEADLINE_S) == 130
+        try:
+            code = proc.wait_exit(RUN_DEADLINE_S)
+        except WaitError:
+            os.kill(proc.pid, signal.SIGABRT)
+            proc.wait_exit(RUN_DEADLINE_S)
+            raise AssertionError('still running %.0f s after Ctrl-C; where it was:\n%s'
+                                 % (RUN_DEADLINE_S, proc.output()[-4000:])) from None
+        assert code == 130
     finally:
         proc.stop()
     assert '[Stage: interrupted]' in proc.output() and 'Traceback' not in proc.output()
