@@ -12,9 +12,10 @@ is missing and skips (exit 0). stage_lite's is `stage` from the sourced workspac
 running an earlier tree, say), to compare before and after in one run.
 
 The worlds (WORLDS): simple (two wanderers), autolab_run (wanderers on Stage's autolab
-plan), pioneer_flocking_run (100 pioneers, sonars and fiducial finders), fasr2 (100
-foragers planning with A*, power packs and chargers), benchmark/cave
-(100 pioneers with sonars and lasers, expand_pioneer; its `paused 1` turned to 0) and
+plan), pioneer_flocking_run (100 pioneers, sonars and fiducial finders), SFU_run (94 such
+flockers on Stage's SFU plan), fasr2 (100 foragers planning with A*, power packs and
+chargers), benchmark/cave (100 pioneers with sonars and lasers, expand_pioneer; its `paused
+1` turned to 0) and
 benchmark/hospital (1000 swarmbots, 12 IR rangers each, expand_swarm). Each is copied twice
 into a folder that mirrors DIR (links to its includes and bitmaps), with `quit_time` T1 and
 T2; `stage -g` runs each copy to its quit_time under /usr/bin/time, and the difference of
@@ -46,6 +47,7 @@ WORLDS_DIR = '/work/scratch/worlds'
 WORLDS = (('simple', 'simple.world', 10, 310),
           ('autolab', 'autolab_run.world', 5, 35),
           ('pioneer_flocking', 'pioneer_flocking_run.world', 5, 45),
+          ('SFU', 'SFU_run.world', 5, 45),
           ('fasr2', 'fasr2.world', 5, 35),
           ('cave', 'benchmark/cave.world', 5, 35),
           ('hospital', 'benchmark/hospital.world', 2, 12))

@@ -298,6 +298,51 @@ def test_a_finder_on_a_static_model_sees_past_its_own_body(tmp_path):
 
 
 
+def test_the_kernel_is_the_rule_as_written_in_crowds_and_at_the_edges(tmp_path):
+    # update() (finders.py's kernel: marks, ranks, its cheap tests first) against
+    # update_one_by_one() (the rule in Python, candidate by candidate): many targets in a
+    # shuffled rank, a few or most of them in a finder's box (the kernel ranks a few by
+    # sorting, many by a pass over all), some exactly on the field of view's and the
+    # range's edges, with fovs of 0, 90, 180, 300 and 360 degrees
+    rng = np.random.default_rng(7)
+    targets = ['model( name "t%d" pose [ %r %r 0 %r ] size [ 0.2 0.2 0.5 ]'
+               ' fiducial_return %d )' % (k, x, y, a, k + 1)
+               for k, (x, y, a) in enumerate(zip(rng.uniform(-30, 30, 150),
+                                                rng.uniform(-30, 30, 150),
+                                                rng.uniform(-180, 180, 150), strict=True))]
+    edges = [(3.0, 3.0), (3.0, -3.0), (0.0, 4.0), (-2.0, 0.0), (5.0, 0.0)]
+    targets += ['model( name "e%d" pose [ %r %r 0 0 ] size [ 0.2 0.2 0.5 ]'
+                ' fiducial_return 1 )' % (k, x, y) for k, (x, y) in enumerate(edges)]
+    finders = [('pose [ 0 0 0 0 ]', 'fov 90 range_max 5'),
+               ('pose [ -8 -8 0 0 ]', 'fov 0 range_max 6'),
+               ('pose [ 8 -8 0 90 ]', 'fov 180 range_max 4'),
+               ('pose [ 1 2 0 -30 ]', 'fov 300 range_max 30'),
+               ('pose [ -4 1 0 45 ]', 'fov 360 range_max 12')]
+    body = '\n'.join('position( name "f%d" %s %s fiducial( %s ) )' % (k, ROBOT, pose, props)
+                      for k, (pose, props) in enumerate(finders)) + '\n' + '\n'.join(targets)
+    s = Scene(tmp_path, body)
+    order = {m: float(r) for m, r in zip(s.index.models,
+                                          rng.permutation(len(s.index.models)),
+                                          strict=True)}
+    s.index = FiducialIndex(s.world.models, rank=order.__getitem__)
+    s.index.begin_step()
+    layer = (s.world.updates + 1) % 2
+    counts = []
+    for k in range(len(finders)):
+        f = s.finder(k)
+        kernel = [(r.model.name, r.range, r.bearing, r.geom, r.pose, r.id)
+                  for r in f.update(s.index, s.sight, layer)]
+        rule = [(r.model.name, r.range, r.bearing, r.geom, r.pose, r.id)
+                for r in f.update_one_by_one(s.index, s.sight, layer)]
+        assert kernel == rule
+        counts.append(len(kernel))
+    names = [r.model.name for r in s.finder(0).update(s.index, s.sight, layer)]
+    assert {'e0', 'e1'} <= set(names)          # on the fov's edges: seen
+    assert 'e4' not in names                   # at range_max: not seen
+    assert counts[1] == 0 and min(counts[3:]) > 10
+
+
+
 def test_sights_rays_are_the_rangers_where_their_rules_agree(tmp_path):
     # every model seen by rangers, the beam at the finders' height: the same walk, the same hits
     s = Scene(tmp_path, 'define laser ranger ( sensor( range [ 0 6 ] fov 360 samples 721 ) )\n'

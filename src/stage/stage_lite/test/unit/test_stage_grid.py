@@ -107,3 +107,39 @@ def test_ray_angles_are_rounded_to_floats_one_after_the_other():
 def test_a_beam_through_empty_space_reads_its_range(tmp_path):
     g = world(tmp_path, 'model( pose [ 40 40 0 0 ] size [ 1 1 1 ] )', 'pose [ 0 0 0 33 ]')
     assert g.ranges[0] == 5.0 and not math.isnan(g.ranges[0])
+
+
+@pytest.mark.parametrize('to, expected', [
+    ((0.5, 0.0, 0.0, 0.0), 'free'),          # into open space
+    ((1.2, 0.0, 0.0, 0.0), 'robot'),         # into the other robot
+    ((-0.5, 1.85, 0.0, 0.3), 'wall'),        # into the wall
+    ((0.0, -0.4, 0.0, 0.6), 'free')])        # under the high box (no height in common)
+def test_a_move_tests_its_blocks_as_it_draws_them_as_collides_would_after(tmp_path, to,
+                                                                          expected):
+    # grid.move tests each block while drawing it; collides() walks the drawn cells after:
+    # the same answer (the first hit in block, cell and list order)
+    text = ('resolution 0.02\n'
+            'position( name "me" pose [ 0 0 0 0 ] size [ 0.5 0.4 0.3 ]'
+            ' block( points 3 point[0] [ 0 0 ] point[1] [ 0.3 0.1 ] point[2] [ 0 0.3 ]'
+            ' z [ 0 0.2 ] ) )\n'
+            'position( name "you" pose [ 1.6 0 0 0 ] size [ 0.6 0.6 0.3 ] )\n'
+            'model( name "wall" pose [ 0 2 0 0 ] size [ 4 0.1 1 ] )\n'
+            'model( name "high" pose [ 0 -0.6 0.35 0 ] size [ 0.4 0.2 0.1 ] )\n')
+    answers = []
+    for way in ('move', 'draw, then collides'):
+        path = tmp_path / ('w_%d.world' % len(answers))
+        path.write_text(text)
+        w = load_world(str(path))
+        r = w.robots[0]
+        old = w._body_rows(r)
+        r.model.pose = to
+        new = w._body_rows(r)
+        seqs = np.array([w._seqs(r), w._seqs(r)])
+        if way == 'move':
+            answers.append(w.space.move(r.block_ids, new, old, seqs, 0))
+        else:
+            w.space.draw(r.block_ids, new, 0, seqs[0])
+            answers.append(w.space.collides(r.block_ids, 0))
+    names = {w.robots[1].model.index: 'robot', grid.STATIC: 'wall', grid.NO_HIT: 'free'}
+    assert answers[0] == answers[1]
+    assert names.get(answers[0]) == expected

@@ -180,18 +180,25 @@ class _Batch:
         found = np.zeros(len(plan['kind']), np.bool_)
         near = np.zeros(len(plan['kind']), np.float64)
         finders = plan['finders']
-        for e in rows[plan['kind'][rows] == FINDER].tolist():
-            seen = finders[e].last_nearest()
-            if seen is not None:
-                # (the step's nearest array, the finder's row): its nearest, unmade
-                near_of, i = seen
-                found[e] = near_of[i, 2] != 0.0
-                near[e] = near_of[i, 1]
-                continue
-            nearest = finders[e].nearest()
-            if nearest is not None:
-                found[e] = True
-                near[e] = nearest[1]
+        at = rows[plan['kind'][rows] == FINDER]
+        # each (the step's nearest array, the finder's row): its nearest, unmade; all from
+        # one array (the finders of one update_all), read at once
+        seen = [finders[e].last_nearest() for e in at.tolist()]
+        if seen and all(s is not None and s[0] is seen[0][0] for s in seen):
+            near_of = seen[0][0][[i for _, i in seen]]
+            found[at] = near_of[:, 2] != 0.0
+            near[at] = near_of[:, 1]
+        else:
+            for e, s in zip(at.tolist(), seen, strict=True):
+                if s is not None:
+                    near_of, i = s
+                    found[e] = near_of[i, 2] != 0.0
+                    near[e] = near_of[i, 1]
+                    continue
+                nearest = finders[e].nearest()
+                if nearest is not None:
+                    found[e] = True
+                    near[e] = nearest[1]
         done = _flock_all(rows, plan['kind'], plan['who'], found, near, plan['beams'],
                           plan['first'], plan['headings'], plan['row'], flock.sees,
                           flock.heading, plan['goal'], plan['mode'], plan['rand48'])

@@ -126,24 +126,28 @@ class FiducialIndex:
         """World::Update's first work: the sets sorted by global x and by global y (ties by
         address: rank) rebuilt from the fiducial-bearing models' poses now."""
         members = self._members = list(self.models)
-        _, at, self._ranks = self.constants(members)
+        _, at, self._ranks, _, _ = self.constants(members)
         poses = self.poses(members, at=at)
         # stable sorts: equal (x, rank) keep the models' order, as sorted() does
         self._order_x = np.lexsort((self._ranks, poses[:, 0]))
         self._order_y = np.lexsort((self._ranks, poses[:, 1]))
 
     def constants(self, models):
-        """(root indices, model indices, ranks) of the models, arrays, kept for the same
-        list of models (the sets' members from one begin_step to the next)."""
+        """(root indices, model indices, ranks, the models' places by rank, each model's
+        place among those) of the models, arrays, kept for the same list of models (the
+        sets' members from one begin_step to the next)."""
         key = (self.rank, tuple(models))
         got = self._constants.get(key)
         if got is None:
             if len(self._constants) > 8:
                 self._constants.clear()
+            ranks = np.array([self.rank(h) for h in models], np.float64)
+            by_rank = np.argsort(ranks, kind='stable')
+            rank_at = np.empty(len(models), np.int64)
+            rank_at[by_rank] = np.arange(len(models))
             got = self._constants[key] = (
                 np.array([h.root.index for h in models], np.int64),
-                np.array([h.index for h in models], np.int64),
-                np.array([self.rank(h) for h in models], np.float64))
+                np.array([h.index for h in models], np.int64), ranks, by_rank, rank_at)
         return got
 
     def finder_rows(self, finders, sight):

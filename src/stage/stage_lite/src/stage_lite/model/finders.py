@@ -9,6 +9,7 @@ last_nearest read the nearest without). From PARALLEL_CANDIDATES finder-candidat
 the finders are shared among numba's threads, each writing its own rows.
 """
 import math
+from operator import attrgetter
 
 import numpy as np
 
@@ -20,6 +21,8 @@ from .raytrace import trace
 #: From this many finder-candidate pairs in a step, the finders are shared among numba's
 #: threads (each pair may cost a ray).
 PARALLEL_CANDIDATES = 1000
+_KEY = attrgetter('fiducial_key')          # read each step: a model's may change
+_RETURN = attrgetter('fiducial_return')
 
 
 def update_all(finders, index, sight, layer):
@@ -32,19 +35,23 @@ def update_all(finders, index, sight, layer):
             f.fiducials = []
         return
     n, m = len(finders), len(members)
-    member_root, member_index, _ = index.constants(members)
-    poses = index.poses(members, at=member_index)
-    member_key = np.fromiter((h.fiducial_key for h in members), np.int64, m)
-    member_return = np.fromiter((h.fiducial_return for h in members), np.int64, m)
+    member_root, member_index, _, by_rank, rank_at = index.constants(members)
     rows = index.finder_rows(finders, sight)
     table = index.finder_table
-    fin = np.empty((n, 10), np.float64)
     at = table['ints'][rows, 3]
-    fin[:, 0:3] = index.poses(finders, at=at)[:, (0, 1, 3)]
+    # the members' and the finders' global poses in one chain, the finders' bodies' frames
+    models = members + finders
+    both = index.poses(models, at=np.concatenate((member_index, at)))
+    poses = both[:m]
+    keys = np.array(list(map(_KEY, models)), np.int64)
+    member_key = keys[:m]
+    member_return = np.array(list(map(_RETURN, members)), np.int64)
+    fin = np.empty((n, 10), np.float64)
+    fin[:, 0:3] = both[m:, (0, 1, 3)]
     fin[:, 3:7] = index.poses(finders, body=True, at=at)
     fin[:, 7:10] = table['floats'][rows]
     ints = np.empty((n, 3), np.int64)
-    ints[:, 0] = np.fromiter((f.fiducial_key for f in finders), np.int64, n)
+    ints[:, 0] = keys[m:]
     ints[:, 1:3] = table['ints'][rows, 0:2]
     # the static tables their rays read: one per (height, tree holding static bodies or not)
     z, tree = fin[:, 5], table['ints'][rows, 2]
@@ -69,14 +76,13 @@ def update_all(finders, index, sight, layer):
     out = (np.empty(n * m, np.int64), np.empty((n * m, 3), np.float64),
            np.empty(n * m, np.int64))
     see = _see_all_parallel if n * m >= PARALLEL_CANDIDATES else _see_all
-    see(fin, ints, classes, poses, index._order_x, index._order_y, index._ranks, member_key,
-        member_root, member_index, member_return, layer, sp.ppm, sp.rx0, sp.ry0, sp.nrx,
-        sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st, sp.dyn_head, sp.ent_block,
-        sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin, sp.blk_zmax, sight.model_root,
-        sight.visible, count, nearest, *out)
+    see(fin, ints, classes, poses, index._order_x, index._order_y, by_rank, rank_at,
+        member_key, member_root, member_index, member_return, layer, sp.ppm, sp.rx0,
+        sp.ry0, sp.nrx, sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st, sp.dyn_head,
+        sp.ent_block, sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin, sp.blk_zmax,
+        sight.model_root, sight.visible, count, nearest, *out)
     step = _Seen(members, poses, out, count, nearest)
-    for i, f in enumerate(finders):
-        f._fiducials = []
+    for i, f in enumerate(finders):     # (their readings are made from it when asked)
         f._seen = (step, i)
 
 
@@ -109,48 +115,82 @@ def _bisect_right(keys, order, x):
 
 
 @njit(cache=True)
-def _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root, index,
-             ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
-             dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+def _candidates(i, fin, xs, ys, order_x, order_y, by_rank, rank_at):
+    """Finder i's candidates in Stage's order: the models in both sets' ranges (Stage's
+    box, by the sets' bounds: nearby, _above), by rank. Marks instead of a set's
+    intersection; ranked by a pass over every model when many are in the box, else by
+    sorting their places in the ranking (the same order: ranks are distinct)."""
+    m = xs.shape[0]
+    gx, gy, rmax = fin[i, 0], fin[i, 1], fin[i, 7]
+    sx = _bisect_right(xs, order_x, gx - rmax)
+    ex = _bisect_right(xs, order_x, gx + rmax)
+    sy = _bisect_right(ys, order_y, gy - rmax)
+    ey = _bisect_right(ys, order_y, gy + rmax)
+    mark = np.zeros(m, np.uint8)
+    for k in range(sx, ex):
+        mark[order_x[k]] = 1
+    n = 0
+    for k in range(sy, ey):
+        c = order_y[k]
+        if mark[c] == 1:
+            mark[c] = 2
+            n += 1
+    cands = np.empty(n, np.int64)
+    if 8 * n >= m:
+        j = 0
+        for k in range(m):
+            c = by_rank[k]
+            if mark[c] == 2:
+                cands[j] = c
+                j += 1
+        return cands
+    j = 0
+    for k in range(sy, ey):
+        c = order_y[k]
+        if mark[c] == 2:
+            cands[j] = rank_at[c]
+            j += 1
+    cands.sort()
+    for k in range(n):
+        cands[k] = by_rank[cands[k]]
+    return cands
+
+
+@njit(cache=True)
+def _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at, key,
+             root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+             st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
              model_root, visible, count, nearest, out_c, out_f, out_id):
     """Finder i's update (fin: gx, gy, ga, body x, y, z, a, range_max, range_max_id, fov;
     ints: key, root, ignore_zloc): its readings written to out from i * len(poses) on
     (candidate, range, bearing, his heading relative to the finder's, id), count[i] of
     them, and nearest[i] the range and heading of the first of the least range below 1e6
-    (Fiducial.nearest), and 1 if there is one."""
+    (Fiducial.nearest), and 1 if there is one. The tests are Stage's, the cheap ones
+    first (none has a side effect); a candidate surely out of range (its squared distance
+    above range_max's by a relative 1e-9) or surely out of the field of view (its distance
+    along the heading below range * (cos(fov / 2) - 1e-9): 1e-9 rad or more beyond it;
+    the roundings are some 1e-16) is dropped before hypot and atan2."""
     m = poses.shape[0]
     gx, gy, ma = fin[i, 0], fin[i, 1], fin[i, 2]
     rmax = fin[i, 7]
-    # the candidates: Stage's box, by the sets' bounds (nearby, _above)
-    sx = _bisect_right(xs, order_x, gx - rmax)
-    ex = _bisect_right(xs, order_x, gx + rmax)
-    sy = _bisect_right(ys, order_y, gy - rmax)
-    ey = _bisect_right(ys, order_y, gy + rmax)
-    in_x = np.zeros(m, np.bool_)
-    for k in range(sx, ex):
-        in_x[order_x[k]] = True
-    picked = np.empty(m, np.int64)
-    n = 0
-    for k in range(sy, ey):
-        c = order_y[k]
-        if in_x[c]:
-            in_x[c] = False         # a model is in a set once
-            picked[n] = c
-            n += 1
-    cands = picked[:n][np.argsort(ranks[picked[:n]], kind='mergesort')]
+    half = fin[i, 9] / 2.0
+    far = rmax * rmax * (1.0 + 1e-9)
+    cosma = math.cos(ma)
+    sinma = math.sin(ma)
+    behind = math.cos(half) - 1e-9 if half < math.pi else -2.0
     at = i * m
-    for c in cands:
-        if ints[i, 0] != key[c]:
+    for c in _candidates(i, fin, xs, ys, order_x, order_y, by_rank, rank_at):
+        if ints[i, 0] != key[c] or root[c] == ints[i, 1]:
             continue
         dx = poses[c, 0] - gx
         dy = poses[c, 1] - gy
+        if dx * dx + dy * dy > far:
+            continue
         rng = math.hypot(dy, dx)
-        if rng >= rmax:
+        if rng >= rmax or dx * cosma + dy * sinma < rng * behind:
             continue
         dtheta = normalize(math.atan2(dy, dx) - ma)
-        if abs(dtheta) > fin[i, 9] / 2.0:
-            continue
-        if root[c] == ints[i, 1]:
+        if abs(dtheta) > half:
             continue
         ox, oy, oz, oa = pose_add_kernel(fin[i, 3], fin[i, 4], fin[i, 5], fin[i, 6], 0.0,
                                          0.0, 0.0, dtheta)
@@ -176,23 +216,23 @@ def _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key,
 
 
 @njit(cache=True)
-def _see_all(fin, ints, classes, poses, order_x, order_y, ranks, key, root, index, ret,
-             layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
+def _see_all(fin, ints, classes, poses, order_x, order_y, by_rank, rank_at, key, root, index,
+             ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_first,
              dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
              model_root, visible, count, nearest, out_c, out_f, out_id):
     """Every finder's update (_see_one), in this thread."""
     xs = poses[:, 0].copy()
     ys = poses[:, 1].copy()
     for i in range(fin.shape[0]):
-        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root,
-                 index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-                 st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
+                 key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
+                 reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
                  blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)
 
 
 @njit(parallel=True, cache=True)
-def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, ranks, key, root, index,
-                      ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, by_rank, rank_at, key, root,
+                      index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
                       st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
                       blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id):
     """_see_all, the finders shared among numba's threads (each writes its own rows),
@@ -203,7 +243,7 @@ def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, ranks, key, r
     half = (n + 1) // 2
     for j in prange(n):
         i = 2 * j if j < half else 2 * (j - half) + 1
-        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, ranks, key, root,
-                 index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-                 st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
+                 key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
+                 reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
                  blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)

@@ -125,12 +125,24 @@ def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_
 @njit(cache=True)
 def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
               reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, ent_seq,
-              free_state, ent_free, page_free):
+              free_state, ent_free, page_free, test, reg_static, st_coll, blk_class, blk_model,
+              blk_zmin, blk_zmax, model_root, model_obstacle):
     """Block::Map: the block's outline cells at the given pixel vertices, each an entry at
-    the end of its cell's list. The region table must hold them (World keeps it so)."""
+    the end of its cell's list. The region table must hold them (World keeps it so). With
+    `test`, also the block's part of collides() on the way (its cells, static first, then
+    each list as the walk to its end reads it): its robot's own entries never count there,
+    and nothing else changes while its robot is drawn, so this is what collides() would say
+    of the block once its robot is drawn. Returns that (NO_HIT without `test`)."""
     s = rc_start[b]
     end = poly_cells(vx, vy, rc_x[layer], rc_y[layer], s)
     rc_len[layer, b] = end - s
+    m = blk_model[b]
+    testing = test and model_obstacle[m]
+    hit = NO_HIT
+    if testing and blk_zmin[b] < 0.0:
+        hit = GROUND
+        testing = False
+    bit = np.uint32(1) << np.uint32(blk_class[b])
     for k in range(s, end):
         gx = rc_x[layer, k]
         gy = rc_y[layer, k]
@@ -143,6 +155,11 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
             dyn_head[page, 1, :] = -1
             reg_dyn[reg] = page
         cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
+        if testing:
+            spage = reg_static[reg]
+            if spage >= 0 and (st_coll[spage, cell] & bit) != 0:
+                hit = STATIC
+                testing = False
         e = ent_free[0]
         ent_free[0] = ent_next[e]
         ent_block[e] = b
@@ -152,11 +169,27 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
         if tail < 0:
             dyn_head[page, layer, cell] = e
         else:
-            while ent_next[tail] >= 0:
+            while True:
+                if testing and _blocks(m, b, ent_block[tail], blk_model, blk_zmin, blk_zmax,
+                                       model_root, model_obstacle):
+                    hit = blk_model[ent_block[tail]]
+                    testing = False
+                if ent_next[tail] < 0:
+                    break
                 tail = ent_next[tail]
             ent_next[tail] = e
         reg_count[reg] += 1
         reg_dyncount[reg] += 1
+    return hit
+
+
+@njit(cache=True)
+def _blocks(m, b, b2, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
+    """Whether block b2 stands in the way of block b (of model m): Block::TestCollision's
+    rule (another obstacle model of another tree, their height ranges meeting)."""
+    m2 = blk_model[b2]
+    return (m2 != m and model_obstacle[m2] and model_root[m2] != model_root[m]
+            and blk_zmin[b2] <= blk_zmax[b] and blk_zmax[b2] >= blk_zmin[b])
 
 
 @njit(cache=True)
@@ -186,11 +219,9 @@ def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, re
             if page >= 0:
                 e = dyn_head[page, layer, cell]
                 while e >= 0:
-                    b2 = ent_block[e]
-                    m2 = blk_model[b2]
-                    if (m2 != m and model_obstacle[m2] and model_root[m2] != model_root[m]
-                            and blk_zmin[b2] <= blk_zmax[b] and blk_zmax[b2] >= blk_zmin[b]):
-                        return m2
+                    if _blocks(m, b, ent_block[e], blk_model, blk_zmin, blk_zmax, model_root,
+                               model_obstacle):
+                        return blk_model[ent_block[e]]
                     e = ent_next[e]
     return NO_HIT
 
@@ -198,9 +229,13 @@ def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, re
 @njit(cache=True)
 def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x,
            rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block,
-           ent_next, ent_seq, free_state, ent_free, page_free):
+           ent_next, ent_seq, free_state, ent_free, page_free, test, reg_static, st_coll,
+           blk_class, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """UnMap then Map of each block at its model's body pose (x, y, cos, sin): Stage's
-    LocalToPixels, floor((x + px cos - py sin) * ppm), in Stage's order of operations."""
+    LocalToPixels, floor((x + px cos - py sin) * ppm), in Stage's order of operations. With
+    `test`, the blocks (a robot and what it carries) also tested as they are drawn: what
+    collides() would then say (map_block), else NO_HIT."""
+    hit = NO_HIT
     for i in range(blocks.shape[0]):
         b = blocks[i]
         gx, gy, cosa, sina = poses[i, 0], poses[i, 1], poses[i, 2], poses[i, 3]
@@ -213,9 +248,15 @@ def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_l
         unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
                     reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, ent_free,
                     page_free)
-        map_block(b, layer, vx[:n], vy[:n], seqs[i], rc_start, rc_len, rc_x, rc_y, rx0, ry0,
-                  nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next,
-                  ent_seq, free_state, ent_free, page_free)
+        testing = test and hit == NO_HIT     # (the first hit is the answer)
+        found = map_block(b, layer, vx[:n], vy[:n], seqs[i], rc_start, rc_len, rc_x, rc_y,
+                          rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head,
+                          ent_block, ent_next, ent_seq, free_state, ent_free, page_free,
+                          testing, reg_static, st_coll, blk_class, blk_model,
+                          blk_zmin, blk_zmax, model_root, model_obstacle)
+        if hit == NO_HIT:
+            hit = found
+    return hit
 
 
 @njit(cache=True)
@@ -224,16 +265,18 @@ def move(blocks, new_poses, old_poses, seqs, layer, ppm, pts, pts_off, vx, vy, r
          st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free,
          page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """ModelPosition::Move's grid work: the robot's blocks drawn in `layer` at their new
-    poses, tested; on a collision drawn back at the old ones (seqs: two rows, the drawing
-    numbers of each). Returns collides()'s answer."""
-    redraw(blocks, new_poses, seqs[0], layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len,
-           rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head,
-           ent_block, ent_next, ent_seq, free_state, ent_free, page_free)
-    hit = collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
-                   reg_static, reg_dyn, st_coll, blk_class, dyn_head, ent_block, ent_next,
-                   blk_model, blk_zmin, blk_zmax, model_root, model_obstacle)
+    poses and tested as they are drawn (redraw's test: collides()'s answer, without a
+    second walk of the cells); on a collision drawn back at the old ones (seqs: two rows,
+    the drawing numbers of each). Returns collides()'s answer."""
+    hit = redraw(blocks, new_poses, seqs[0], layer, ppm, pts, pts_off, vx, vy, rc_start,
+                 rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
+                 dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free, page_free, True,
+                 reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
+                 model_obstacle)
     if hit != NO_HIT:
         redraw(blocks, old_poses, seqs[1], layer, ppm, pts, pts_off, vx, vy, rc_start,
                rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
-               dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free, page_free)
+               dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free, page_free, False,
+               reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
+               model_obstacle)
     return hit

@@ -235,7 +235,9 @@ class Space:
                         self.rc_len, self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx,
                         self.nry, self.reg_count, self.reg_dyn, self.reg_dyncount,
                         self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
-                        self.free_state, self.ent_free, self.page_free)
+                        self.free_state, self.ent_free, self.page_free, False,
+                        self.reg_static, self.st_coll, self.blk_class, self.blk_model,
+                        self.blk_zmin, self.blk_zmax, self.model_root, self.model_obstacle)
             start = end
 
     def move(self, blocks, new_poses, old_poses, seqs, layer):
