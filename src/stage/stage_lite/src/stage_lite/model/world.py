@@ -131,6 +131,7 @@ class World(RangerCasts, RobotByRobot):
         # its own (the same run: the tests compare the two)
         self.batches = True
         self._prepare_rays()
+        self.race = self._worker_race(seed)     # which rangers cast before the moves
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models, rank=self._rank.__getitem__)
         if self.motion is not None:
@@ -244,14 +245,16 @@ class World(RangerCasts, RobotByRobot):
             for i in updated[0][self._kind[Blobfinder][updated[0]]].tolist():
                 models[i].update(self.sight, sensing)     # beside the position updates
         self.cameras.update(now)
+        before = self.state.pose.copy() if self.race is not None else None
         self.motion.move(self.state, subscribed, dt, self.updates % 2)
         for queue in range(1, self.threads + 1):
             updated.append(scheduler.due_indices(queue, now))
         every = np.concatenate(updated)
         rangers = self._ranger_slot[every]
-        rangers = rangers[rangers >= 0]
+        is_ranger = rangers >= 0
+        rangers = rangers[is_ranger]
         if rangers.size:
-            self.cast_ranger_slots(rangers, sensing)
+            self.cast_ranger_slots(rangers, sensing, self._stale(updated, is_ranger), before)
         if self._any_finder:
             finders = [models[i] for ids in updated[1:]
                        for i in ids[self._kind[Fiducial][ids]].tolist()]
