@@ -84,6 +84,7 @@ class RangerCasts:
                 chain[g] = elements(g, [g.geom_pose])
         # elements(g, [g.geom_pose, g.ray_local(s)]): the ranger's chain then a plain tail
         self._sensor_robot = np.array([r for r, _, _ in carried], np.int64)
+        self._top_level_robots = all(r.model.parent is None for r in self.robots)
         self._origin_chains = Chains(
             [(r, chain[g] + [(tuple(g.ray_local(s)), False, 0.0)]) for r, g, s in carried],
             [(g.index, len(chain[g])) for _, g, _ in carried])
@@ -191,9 +192,8 @@ class RangerCasts:
         order their noise is drawn; default all) from the robots' poses now, through `layer`
         (default: the one the next step's rays read), and stores each sensor's readings.
         stale (bool per due sensor): those cast from their robot's pose `before` this
-        step's move instead (race.py; `before`: the robots' poses, an array as
-        state.pose, or a dict robot index -> its position model's pose when robots move
-        one by one)."""
+        step's move instead (race.py; `before`: the robots' poses then, a copy of
+        state.pose)."""
         if layer is None:
             layer = (self.updates + 1) % 2
         due = self._all_sensors if due is None else np.asarray(due, np.int64)
@@ -239,22 +239,22 @@ class RangerCasts:
 
     def _stale_origins(self, positions, stale_rows, before, origins):
         """origins[i] of the sensors positions[i] where stale_rows[i]: from their robots'
-        poses `before` the move (see cast_rays)."""
+        poses `before` the move (rows as state.pose's; see cast_rays)."""
         at = np.flatnonzero(stale_rows)
-        if self.motion is not None:
+        if self._top_level_robots:      # the chains carry a robot's pose as ray_origin does
             out = np.empty((at.size, 4), np.float64)
             self._origin_chains.poses(positions[at], before, out)
             origins[at] = out
             return
         for i in at.tolist():
             g, s = self._sensors[positions[i]]
-            robot = self.robots[self._sensor_robot[positions[i]]]
-            keep = robot.model.pose
-            robot.model.pose = before.get(robot.index, keep)
+            model = self.robots[self._sensor_robot[positions[i]]].model
+            keep = model.pose
+            model.pose = tuple(before[self._sensor_robot[positions[i]]])
             try:
                 origins[i] = g.ray_origin(s)
             finally:
-                robot.model.pose = keep
+                model.pose = keep
 
     def _slot_indices(self, slots):
         """(their sensors, their views' beams, the sensor beams those views show) of the

@@ -36,7 +36,7 @@ class RobotByRobot:
                 m.update(self.sight, (self.updates + 1) % 2)
         self.cameras.update(now)
         layer = self.updates % 2
-        before = {r.index: r.model.pose for r in self._movers} if self.race is not None else None
+        before = self.state.pose.copy() if self.race is not None else None
         for r in self._movers:                    # Stage's active_velocity, in its order
             old = r.pose
             if scheduler.subscribed(r.model):
