@@ -52,10 +52,11 @@ def test_a_still_robot_costs_the_main_thread_nothing():
     assert not race.stale(np.array([1, 2]), np.array([0, 1]), np.array([False, True])).any()
 
 
-def test_one_worker_thread_never_races(tmp_path):
+def test_one_worker_thread_never_races_nor_a_world_loaded_without_the_race(tmp_path):
     for threads in ('', 'threads 0', 'threads 1'):
         assert load_world(swarm(tmp_path, threads, n=2), stageros=False).race is None
     assert load_world(swarm(tmp_path, 'threads 2', n=2), stageros=False).race is not None
+    assert load_world(swarm(tmp_path, 'threads 2', n=2), stageros=False, race=False).race is None
 
 
 def test_a_stale_cast_reads_the_robots_pose_before_the_move(tmp_path):
