@@ -14,7 +14,7 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
-NODES = ('/swarm_discover', '/swarm_five')
+NODES = ('/swarm_discover', '/swarm_five', '/swarm_from_one', '/swarm_past')
 RATE_HZ = 10.0
 WARN_DEADLINE_S = 30.0
 
@@ -39,7 +39,7 @@ class TestSwarmBadInput(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         wait_for(lambda: all(n in publishers_of('/rosout') for n in NODES), START_DEADLINE_S,
-                 'both controllers up')
+                 'every controller up')
         cls.log = LogRecorder(None)
         cls.cmd = {i: Recorder('/robot_%d/cmd_vel' % i, Twist) for i in SCANS}
 
@@ -74,6 +74,12 @@ class TestSwarmBadInput(unittest.TestCase):
             self.log.wait_log('no beam looks along 0 degrees', level=4,
                               timeout_s=WARN_DEADLINE_S)
             self.assertEqual(self.cmd[2].count(), 0)
+            # from robot_1 on: robot_1 and robot_2 (a team splitting the swarm)
+            self.log.wait_log('driving 2 robots (robot_1 to robot_2)', node='/swarm_from_one',
+                              timeout_s=WARN_DEADLINE_S)
+            # from robot_7 on, of 3: nothing to drive yet, said
+            self.log.wait_log('~first is 7 but stageros has 3 robots', level=4,
+                              node='/swarm_past', timeout_s=WARN_DEADLINE_S)
             # told 5: robot_3 and robot_4 never send a scan
             self.log.wait_log('no scan yet from robot_3, robot_4 (2 in all)', level=4,
                               node='/swarm_five', timeout_s=WARN_DEADLINE_S)

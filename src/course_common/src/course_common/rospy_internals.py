@@ -11,16 +11,22 @@ update renames or changes one, those tests fail naming it, instead of the simula
 slow or silent.
 """
 import contextlib
+import functools
 import itertools
+import threading
 import time
+import traceback
 import weakref
 
 import rospy
 import rospy.core
+import rospy.impl.tcpros_pubsub
 import rospy.names
+from genpy import DeserializationError
 from rospy.impl.paramserver import get_param_server_cache
 from rospy.impl.registration import get_topic_manager
 
+from course_common.receive_thread import ReceiveThread
 from course_common.tcpros_frames import FrameStream
 
 #: The parameter whose local cache entry cheap_rosout() and cache_rosout_param() seed.
@@ -114,6 +120,120 @@ def throttled_topic_checks(period_s=TOPIC_CHECK_PERIOD_S):
                     impl.check()
 
     manager.check_all = check_all
+
+
+def one_receive_thread():
+    """Read every subscribed connection of this node in one thread. Call it before the
+    node's first subscription; once per process (later calls do nothing).
+
+    Replaces nothing public (rospy has no switch for it): rospy starts a thread per
+    subscribed connection that blocks in recv() and runs the callbacks (TCPROSHandler's
+    create_transport runs robust_connect_subscriber, which connects, then stays in the
+    transport's receive_loop). swarm_controller at 1,000 robots subscribes 2,000 topics:
+    2,000 threads woken ten times a simulated second each, taking the GIL in turn, and the
+    node never received every first scan. Here rospy still connects each subscription in its
+    own thread (its retries unchanged), and then, instead of its receive loop, hands the
+    socket to one ReceiveThread: the same reads into the connection's buffer, the same
+    deserialisation (the protocol's read_messages, with the subscription's queue_size), the
+    same statistics, _connection_header and latch, then the subscription's receive_callback,
+    so a callback gets the same messages in the same order per connection; callbacks of
+    different connections no longer run at the same time. A connection that ends or fails
+    (the publisher gone, a reset, a message that does not deserialise) goes back to rospy's
+    own receive loop in a thread of its own, which meets the same end and closes or
+    reconnects as rospy always does.
+    """
+    connect = rospy.impl.tcpros_pubsub.robust_connect_subscriber
+    if getattr(connect, 'one_receive_thread', False):
+        return
+    receiver = ReceiveThread('tcpros_receive', _receive_error)
+
+    def connect_then_share(conn, *args):
+        conn.receive_loop = functools.partial(_share_connection, receiver, conn)
+        connect(conn, *args)
+
+    connect_then_share.one_receive_thread = True
+    rospy.impl.tcpros_pubsub.robust_connect_subscriber = connect_then_share
+
+
+def _receive_error(reader, error):
+    rospy.core.rospyerr('one_receive_thread: %s dropped: %s', reader, error)
+
+
+def _share_connection(receiver, conn, receive_cb):
+    """What conn.receive_loop(receive_cb) does, in the receiver: its socket added to it."""
+    del conn.receive_loop                   # the class's own again, for a hand-back
+    close = conn.close
+
+    def forget_then_close():
+        if conn.socket is not None:
+            receiver.remove(conn.socket)
+        close()
+
+    conn.close = forget_then_close
+    read = functools.partial(_read_connection, conn, receive_cb)
+    if not _deliver(conn, receive_cb):      # the handshake's read may have taken messages
+        return _hand_back(conn, receive_cb)
+    conn.socket.setblocking(False)
+    receiver.add(conn.socket, read)
+    return None
+
+
+def _read_connection(conn, receive_cb):
+    """One readable event: receive_once's read and what follows it. True to stay."""
+    if conn.done or rospy.core.is_shutdown():
+        return False
+    try:
+        data = conn.socket.recv(conn.protocol.buff_size)
+    except BlockingIOError:
+        return True
+    except OSError:
+        data = b''
+    if not data:                # ended or failed: rospy's loop meets it again and acts
+        _hand_back(conn, receive_cb)
+        return False
+    conn.stat_bytes += len(data)
+    conn.read_buff.write(data)
+    if _deliver(conn, receive_cb):
+        return True
+    _hand_back(conn, receive_cb)
+    return False
+
+
+def _deliver(conn, receive_cb):
+    """The whole messages in conn's buffer to the subscription; False if they do not
+    deserialise (the socket is then closed, as rospy's receive_once does)."""
+    if conn.read_buff.tell() < 4:
+        return True
+    msgs = []
+    try:
+        conn.protocol.read_messages(conn.read_buff, msgs, conn.socket)
+    except DeserializationError:
+        rospy.core.rospyerr(traceback.format_exc())
+        with contextlib.suppress(OSError):
+            conn.socket.close()
+        conn.socket = None      # rospy's loop reconnects a connection without a socket
+        return False
+    if not msgs:
+        return True
+    conn.stat_num_msg += len(msgs)
+    for m in msgs:
+        m._connection_header = conn.header
+    if conn.is_latched:
+        conn.latch = msgs[-1]
+    if not conn.done and not rospy.core.is_shutdown():
+        receive_cb(msgs, conn)
+    return True
+
+
+def _hand_back(conn, receive_cb):
+    """The connection back to rospy's own receive loop, in a thread of its own."""
+    if conn.done or rospy.core.is_shutdown():
+        return
+    if conn.socket is not None:
+        with contextlib.suppress(OSError):
+            conn.socket.setblocking(True)
+    threading.Thread(target=conn.receive_loop, args=(receive_cb,), name=conn.name,
+                     daemon=True).start()
 
 
 def cheap_rosout():

@@ -168,3 +168,31 @@ def test_throttled_topic_checks_check_connected_topics_at_most_once_a_period(mon
     manager.check_all()
     manager.check_all()          # within the period: nothing
     assert (connected.checked, idle.checked) == (1, 0)
+
+
+def test_subscriber_connections_end_in_their_receive_loop():
+    # one_receive_thread() replaces robust_connect_subscriber, looked up by name when rospy
+    # starts a connection's thread, and takes over where it calls conn.receive_loop.
+    import rospy.impl.tcpros_pubsub as pubsub
+    pin(callable(getattr(pubsub, 'robust_connect_subscriber', None)),
+        'rospy.impl.tcpros_pubsub.robust_connect_subscriber', 'exists')
+    pin('target=robust_connect_subscriber' in inspect.getsource(pubsub.TCPROSHandler),
+        'TCPROSHandler.create_transport', 'starts robust_connect_subscriber by its name')
+    pin('conn.receive_loop(receive_cb)' in inspect.getsource(pubsub.robust_connect_subscriber),
+        'robust_connect_subscriber', 'ends in conn.receive_loop(receive_cb)')
+
+
+@pytest.mark.parametrize('attribute', ['read_buff', 'stat_bytes', 'stat_num_msg', 'header',
+                                       'is_latched', 'latch', 'name', 'done', 'socket'])
+def test_subscriber_transport_keeps_what_receive_once_uses(attribute):
+    # the state one_receive_thread's reads update as receive_once does
+    source = inspect.getsource(rospy.impl.tcpros_base.TCPROSTransport)
+    pin('self.%s' % attribute in source, 'TCPROSTransport.' + attribute,
+        'is the transport state receive_once reads or updates')
+
+
+def test_subscriber_protocol_reads_messages_off_the_buffer():
+    import rospy.impl.tcpros_pubsub as pubsub
+    protocol = pubsub.TCPROSSub('/pinned', rospy.AnyMsg, queue_size=1)
+    pin(callable(getattr(protocol, 'read_messages', None)) and protocol.buff_size > 0,
+        'TCPROSSub.read_messages()/buff_size', 'deserialise the buffer / size a recv')

@@ -17,6 +17,9 @@ CONVOY_ROBOTS = ['robot1', 'robot2', 'robot3']
 # The lesson's layout across three hosts; ONE_HOST puts every role on host 1.
 MULTI_SYNC_HOSTS = {'sim': 1, 'monitor': 1, 'robots_01': 2, 'robots_23': 3}
 CONVOY_HOSTS = {'sim': 1, 'convoy_node': 2, 'convoy2_node': 3}
+# A Stage swarm: stageros on host 1, its robots split between a controller on host 2 and one
+# on host 3.
+SWARM_HOSTS = {'sim': 1, 'swarm_a': 2, 'swarm_b': 3}
 STARTUP_S = 60.0  # master, simulator and nodes starting on a loaded 2-core machine
 
 
@@ -33,6 +36,13 @@ def start_master(team, robots, status=False, pose_period_s=0.1, stage=False):
     wait_for(probe.ready, STARTUP_S, 'the master on host 1 to answer the probe (%s)'
              % team.log_path('roscore'))
     return probe
+
+
+def start_roscore(team):
+    """roscore on host 1, once it answers (roslaunch would start a master of its own)."""
+    team.start('roscore', 1, ['roscore', '-p', '11311'])
+    wait_for(lambda: team.run(1, ['rosparam', 'get', '/rosdistro'])[0] == 0, STARTUP_S,
+             'the master on host 1 (%s)' % team.log_path('roscore'))
 
 
 def start_multi_sync(team, layout=None, simulator=TURTLESIM):
@@ -71,3 +81,21 @@ def start_convoy(team, layout=None, pose_period_s=0.1):
                ['roslaunch', 'convoy', 'convoy_follower.launch', 'name:=convoy2_node',
                 'leader:=robot2', 'follower:=robot3'])
     return probe
+
+
+def start_swarm(team, robots, layout=None, speedup=1.0, probe=True):
+    """swarm.launch's stageros (no controller) on the layout's sim host, the first half of
+    the robots driven by swarm_a's swarm_controller, the rest by swarm_b's; a probe on host 1
+    printing every robot's ground-truth pose (probe False: none, and None returned)."""
+    layout = layout or SWARM_HOSTS
+    names = ['robot_%d' % i for i in range(robots)]
+    watcher = start_master(team, names, stage=True) if probe else start_roscore(team)
+    team.start('sim', layout['sim'],
+               ['roslaunch', 'swarm', 'swarm.launch', 'robots:=%d' % robots,
+                'controller:=false', 'speedup:=%g' % speedup], extra_env={'DISPLAY': None})
+    half = robots // 2
+    for name, first, count in (('swarm_a', 0, half), ('swarm_b', half, robots - half)):
+        team.start(name, layout[name],
+                   ['rosrun', 'swarm', 'swarm_controller', '__name:=' + name,
+                    '_first:=%d' % first, '_robots:=%d' % count])
+    return watcher

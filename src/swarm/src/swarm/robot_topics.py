@@ -41,6 +41,18 @@ def missing_robots(indices, count):
     return [i for i in range(count) if i not in have]
 
 
+def driven_robots(first, robots, world_count=None):
+    """The robot numbers a node drives: ``robots`` of them from ``first``, or with ``robots``
+    0 every robot of the world's ``world_count`` from ``first`` (a team of nodes can split
+    a swarm); ValueError naming both when ``first`` is past the world's last robot."""
+    if robots:
+        return range(first, first + robots)
+    if first >= world_count:
+        raise ValueError('~first is %d but stageros has %d robots (robot_0 to robot_%d)'
+                         % (first, world_count, world_count - 1))
+    return range(first, world_count)
+
+
 def first_few(indices, shown=5):
     """'robot_3, robot_7, ... (12 in all)': a list short enough for a log line."""
     names = ['robot_%d' % i for i in indices[:shown]]

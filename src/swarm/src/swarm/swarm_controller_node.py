@@ -6,7 +6,11 @@ import rosgraph
 import rospy
 from course_common.param_loader import load_or_exit
 from course_common.publishers import unqueued_publisher
-from course_common.rospy_internals import shutdown_requested, throttled_topic_checks
+from course_common.rospy_internals import (
+    one_receive_thread,
+    shutdown_requested,
+    throttled_topic_checks,
+)
 from course_common.schedule import BAD_INPUT_WARN_PERIOD_S
 from course_common.startup import init_node, loop_at_rate, quiet_at_shutdown
 from geometry_msgs.msg import Twist
@@ -14,7 +18,7 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
 from . import expand_law
-from .robot_topics import first_few, missing_robots, robot_topics, scan_robots
+from .robot_topics import driven_robots, first_few, missing_robots, robot_topics, scan_robots
 from .spread import spread_m
 from .swarm_params import load_params
 
@@ -26,18 +30,22 @@ QUEUE_SIZE = 1
 
 
 class SwarmController:
-    """Drives robots 0..N-1 of stageros by Stage's expand_swarm law, from one node.
+    """Drives robots first..first+N-1 of stageros by Stage's expand_swarm law, from one node.
 
     Subscribes: /robot_<i>/base_scan (sensor_msgs/LaserScan), /robot_<i>/odom
-        (nav_msgs/Odometry), for each robot i (with one robot: base_scan, odom, relative);
-        queue 1 each: one rospy thread per connection, 2 per robot.
+        (nav_msgs/Odometry), for each robot i driven (with one robot in the world: base_scan,
+        odom, relative);
+        queue 1 each, all read by one thread (rospy_internals.one_receive_thread; rospy
+        alone gives each connection a thread: 2 per robot).
     Publishes: /robot_<i>/cmd_vel (geometry_msgs/Twist, no send queue) for each robot with
         a scan, at ~rate_hz of sim time (/use_sim_time: stageros's clock); one zero Twist
         each at shutdown. A scan with a NaN or negative range: a zero Twist (and a throttled WARN).
     Services: none.
     Parameters (private):
         ~robots (int, 0): how many robots; 0: as many as stageros publishes scans for (the
-            master's /robot_<i>/base_scan topics, once their count holds for ~discover_s).
+            master's /robot_<i>/base_scan topics, once their count holds for ~discover_s),
+            from ~first on.
+        ~first (int, 0): the first robot driven: nodes on several hosts split a swarm.
         ~rate_hz (float, 10, Hz of sim time): commands per second (stageros steps at 10).
         ~laser_yaw_deg (float, 165, degrees): the laser's yaw on the robot (the swarm
             world's ring: beam i looks along 30 i degrees).
@@ -46,8 +54,11 @@ class SwarmController:
         ~first_scan_warn_s (float, 30, wall s): then a WARN names the robots without a scan.
     """
 
-    def __init__(self, count, params):
-        self.count = count
+    def __init__(self, ids, naming_count, params):
+        """ids: the robot numbers driven (a range); naming_count: how many robots stageros
+        has, as far as names go (one robot: relative names)."""
+        self.ids = ids
+        self.count = count = len(ids)
         self.params = params
         self._lock = threading.Lock()       # the latest readings and the plans
         self._scans = [None] * count        # the latest LaserScan of each robot
@@ -58,7 +69,7 @@ class SwarmController:
         self._all_scanned = False
         self._stopped = False
         self._last_report = None
-        self.topics = [robot_topics(i, count) for i in range(count)]
+        self.topics = [robot_topics(i, naming_count) for i in ids]
         # no send queue (rospy's queue_size=None): a queue is a thread per connection, 1,000
         # more threads at 1,000 robots; the tick writes each command itself, which is the same
         # message on the wire
@@ -107,7 +118,7 @@ class SwarmController:
             ranges = expand_law.clean_ranges(scan.ranges, scan.range_max)
         except ValueError as err:
             self._warn(('ranges', index), 'swarm: %s: %s: stopping robot_%d',
-                       self.topics[index].scan, err, index)
+                       self.topics[index].scan, err, self.ids[index])
             return Twist()
         out = expand_law.command(plan, ranges)
         if out is None:
@@ -132,7 +143,7 @@ class SwarmController:
     def _watch_start(self, scans):
         if self._all_scanned:
             return
-        waiting = [i for i, s in enumerate(scans) if s is None]
+        waiting = [self.ids[k] for k, s in enumerate(scans) if s is None]
         if not waiting:
             self._all_scanned = True
             rospy.loginfo("swarm: every robot's first scan received: %d robots, %.2f s after "
@@ -198,36 +209,59 @@ def discover_count(hold_s):
     return 0
 
 
-def check_count(count):
-    """WARN if the master lists scans of fewer (or more) robots than ~robots says."""
+def check_ids(ids):
+    """WARN if the master lists no scan for some robots driven, or (a node driving from
+    robot_0) scans of more robots than it drives."""
     found = scan_robots(published_topics())
-    missing = missing_robots(found, count)
+    have = set(found)
+    missing = [i for i in ids if i not in have]
     if found and missing:
-        rospy.logwarn('swarm: ~robots is %d but stageros publishes no scan for %s: those '
-                      'robots stay still until it does', count, first_few(missing))
-    if found and found[-1] >= count:
+        rospy.logwarn('swarm: told to drive robot_%d to robot_%d but stageros publishes no '
+                      'scan for %s: those robots stay still until it does', ids[0], ids[-1],
+                      first_few(missing))
+    if found and found[-1] >= ids.stop and ids.start == 0:
         rospy.logwarn('swarm: ~robots is %d but stageros has %d robots: robot_%d and after '
-                      'are not driven', count, found[-1] + 1, count)
+                      'are not driven', len(ids), found[-1] + 1, ids.stop)
+
+
+def discover_ids(params):
+    """The robots to drive, from ~first to the last one stageros has (waits for stageros,
+    WARNs while ~first is past its last robot); None at shutdown."""
+    while not shutdown_requested():
+        count = discover_count(params.discover_s)
+        if count == 0:
+            return None
+        try:
+            return driven_robots(params.first, 0, count), count
+        except ValueError as err:
+            rospy.logwarn_throttle(BAD_INPUT_WARN_PERIOD_S * 10, 'swarm: %s: waiting for more '
+                                   'robots' % err)
+        time.sleep(POLL_S)
+    return None
 
 
 def main():
     throttled_topic_checks()  # 3 topics a robot: rospy's checks after each registration
+    one_receive_thread()      # 2 subscribed connections a robot: one thread, not 2 N
     init_node('swarm_controller')
     params = load_or_exit(load_params, 'swarm_controller')
     if not rospy.get_param('/use_sim_time', False):
         rospy.logwarn('swarm: /use_sim_time was not true when this node started: commands '
                       'are paced by the wall clock, not by stageros (set it before starting '
                       'the node: stageros sets it only once it runs, stage_ros #49)')
-    count = params.robots
-    if count == 0:
-        count = discover_count(params.discover_s)
-        if count == 0:
+    if params.robots == 0:
+        found = discover_ids(params)
+        if found is None:
             return
+        ids, naming_count = found
     else:
-        check_count(count)
-    node = SwarmController(count, params)
+        ids = driven_robots(params.first, params.robots)
+        naming_count = ids.stop
+        check_ids(ids)
+    node = SwarmController(ids, naming_count, params)
     rospy.on_shutdown(node.stop)
-    rospy.loginfo('swarm: driving %d robots by expand_swarm at %g Hz of sim time, laser yaw '
-                  '%.1f deg', count, params.rate_hz, params.laser_yaw_rad * 57.29577951308232)
+    rospy.loginfo('swarm: driving %d robots (robot_%d to robot_%d) by expand_swarm at %g Hz of '
+                  'sim time, laser yaw %.1f deg', len(ids), ids[0], ids[-1], params.rate_hz,
+                  params.laser_yaw_rad * 57.29577951308232)
     threading.Thread(target=node.run, name='swarm_ticks', daemon=True).start()
     rospy.spin()

@@ -37,3 +37,18 @@ def test_spread():
     with pytest.raises(ValueError):
         spread_m([])
 
+
+
+@pytest.mark.parametrize('first, robots, world, ids', [
+    (0, 0, 4, range(0, 4)),          # every robot
+    (3, 0, 10, range(3, 10)),        # the rest of the world from robot_3
+    (500, 500, None, range(500, 1000)),  # told: the world is not asked
+    (2, 5, 3, range(2, 7)),          # told more than there are: the node warns, drives them
+])
+def test_driven_robots(first, robots, world, ids):
+    assert robot_topics.driven_robots(first, robots, world) == ids
+
+
+def test_first_past_the_world():
+    with pytest.raises(ValueError, match='~first is 7 but stageros has 3 robots'):
+        robot_topics.driven_robots(7, 0, 3)

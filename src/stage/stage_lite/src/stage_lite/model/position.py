@@ -47,6 +47,12 @@ class Position(Model):
         self.acceleration_bounds = [(-1.0, 1.0), (-1.0, 1.0), (-1.0, 1.0),
                                     (-math.pi / 2.0, math.pi / 2.0)]
 
+    def draw_integration_error(self, rand48):
+        """ModelPosition's constructor's error: four drand48() draws, the angle's first, then
+        z's, y's and x's (GCC evaluates the Velocity's arguments right to left)."""
+        a, z, y, x = (rand48.drand48() * m - m / 2.0 for m in INTEGRATION_ERROR_MAX[::-1])
+        self.integration_error = (x, y, z, a)
+
     def load(self, wf, rng):
         super().load(wf, rng)
         e = self.entity
@@ -68,7 +74,8 @@ class Position(Model):
         self.est_origin = read_pose(wf, e, 'localization_origin', gpose)
         err = read_pose(wf, e, 'odom_error', None)
         if err is None:
-            err = tuple(rng.random() * m - m / 2.0 for m in INTEGRATION_ERROR_MAX)
+            err = self.integration_error or tuple(rng.random() * m - m / 2.0
+                                                  for m in INTEGRATION_ERROR_MAX)
         self.integration_error = err
         if wf.exists(e, 'localization'):
             loc = wf.read_string(e, 'localization', 'gps')

@@ -65,12 +65,34 @@ class Space:
         order; ray_zs: the beam heights; dynamic_blocks: DynamicBlock list with .coll set to
         an index into coll_ranges (zmin, zmax pairs); extent: cell box (x0, y0, x1, y1) that
         the table must hold at first."""
+        if len(coll_ranges) > 32:
+            raise ValueError('more than 32 height ranges of moving bodies')
+        self.ray_zs = list(ray_zs)
+        self.coll_ranges = list(coll_ranges)
+        self._put_static(static_cells, extent)
+        self._build_dynamic(dynamic_blocks)
+
+    def replace_static(self, static_cells):
+        """The static drawings replaced by these (models made, moved or resized at run
+        time, runtime_models.py); the moving bodies' drawings are kept."""
+        np.subtract.at(self.reg_count, self._regions(*self._static_xy), 2)
+        self.reg_static[:] = -1
+        self._put_static(static_cells, None)
+
+    def _put_static(self, static_cells, extent):
+        """The static pages (per beam height the first model seen, per moving bodies'
+        height range whether an obstacle is there) and the regions' counts of the static
+        drawings; the table grown to hold them (and extent, if given)."""
         sx, sy, smodel, szmin, szmax = static_cells
-        x0, y0, x1, y1 = extent
-        if sx.size:
-            x0, y0 = min(x0, int(sx.min())), min(y0, int(sy.min()))
-            x1, y1 = max(x1, int(sx.max())), max(y1, int(sy.max()))
-        self.resize(x0, y0, x1, y1)
+        ray_zs, coll_ranges = self.ray_zs, self.coll_ranges
+        if sx.size or extent is not None:
+            x0, y0, x1, y1 = extent if extent is not None else (
+                int(sx.min()), int(sy.min()), int(sx.max()), int(sy.max()))
+            if sx.size:
+                x0, y0 = min(x0, int(sx.min())), min(y0, int(sy.min()))
+                x1, y1 = max(x1, int(sx.max())), max(y1, int(sy.max()))
+            self.resize(x0, y0, x1, y1)
+        self._static_xy = (sx, sy)
         # static pages: one per region holding static drawings
         reg = self._regions(sx, sy)
         regions, page_of = np.unique(reg, return_inverse=True)
@@ -92,15 +114,12 @@ class Space:
             first = np.ones(keys.size, bool)
             first[1:] = keys[1:] != keys[:-1]
             flat_ray[k, keys[first]] = models[first]
-        if len(coll_ranges) > 32:
-            raise ValueError('more than 32 height ranges of moving bodies')
         self.st_coll = np.zeros((npages, grid.REGION_CELLS), np.uint32)
         flat_coll = self.st_coll.ravel()
         solid = self.model_obstacle[smodel] if smodel.size else np.zeros(0, bool)
         for k, (zmin, zmax) in enumerate(coll_ranges):
             hit = solid & (szmin <= zmax) & (szmax >= zmin)
             np.bitwise_or.at(flat_coll, key[hit], np.uint32(1 << k))
-        self._build_dynamic(dynamic_blocks)
 
     def _build_dynamic(self, blocks):
         n = len(blocks)

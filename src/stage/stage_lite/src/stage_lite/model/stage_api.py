@@ -11,6 +11,7 @@ Stage. No rospy.
 import math
 from dataclasses import dataclass, replace
 
+from . import runtime_models
 from .bodies import rasterize
 from .energy import find_power_pack
 from .pose import pose_add, stage_normalize
@@ -35,6 +36,16 @@ class Pose:
 
     def __iter__(self):
         return iter((self.x, self.y, self.z, self.a))
+
+    @classmethod
+    def random(cls, world, xmin, xmax, ymin, ymax):
+        """Pose::Random: x in [xmin, xmax), y in [ymin, ymax), z 0, a random heading, from
+        the world's drand48() stream. Stage's build draws the heading first, then y, then x
+        (GCC evaluates the constructor's arguments right to left)."""
+        a = stage_normalize(world.drand48() * (2.0 * math.pi))
+        y = ymin + world.drand48() * (ymax - ymin)
+        x = xmin + world.drand48() * (xmax - xmin)
+        return cls(x, y, 0.0, a)
 
 
 @dataclass
@@ -101,6 +112,14 @@ class WorldApi:
         """drand48()'s state array, for a controller's batch that draws in a kernel
         (glibc_random.drand48_next)."""
         return self._world.rand48.state
+
+    def create_model(self, parent, kind):
+        """World::CreateModel: a new model of type `kind` (only 'model' is simulated) under
+        parent (a model, or None), with Stage's defaults, not drawn until its pose or
+        geometry is set (runtime_models.py); ValueError for what is not simulated."""
+        m = runtime_models.create_model(self._world, None if parent is None
+                                        else parent._model, kind)
+        return api_of(self._world, m)
 
     def add_update_callback(self, function, argument=None):
         """World::AddUpdateCallback: f(world, arg) after every step's model callbacks."""
@@ -171,6 +190,23 @@ class ModelApi:
     @property
     def color(self):
         return self._model.color
+
+    def get_color(self):
+        return self._model.color
+
+    def set_pose(self, pose):
+        """Model::SetPose: (x, y, z, a) in its parent's frame (a Pose or 4 numbers); a
+        model that stands still only (runtime_models.py)."""
+        runtime_models.set_pose(self._world, self._model, tuple(pose))
+
+    def set_geom(self, pose, size):
+        """Model::SetGeom: its origin offset (a Pose) and size (x, y, z), its body scaled to
+        it; a model that stands still only."""
+        runtime_models.set_geom(self._world, self._model, tuple(pose), tuple(size))
+
+    def set_color(self, color):
+        """Model::SetColor: (r, g, b, a), each 0..1."""
+        runtime_models.set_color(self._world, self._model, tuple(color))
 
     def rasterize(self, width, height, cell_w, cell_h):
         """Model::Rasterize: the outlines of its blocks in a width x height raster of

@@ -47,6 +47,7 @@ from .glibc_random import Rand48, Random
 from .motion import Chains, Motion, elements
 from .noise import RangerNoise
 from .robot_state import RobotArrays
+from .runtime_models import redraw_if_changed
 from .scheduler import CB_UPDATE, Scheduler
 from .sight import Sight
 from .stage_api import api_of
@@ -76,7 +77,8 @@ class World(RangerCasts, RobotByRobot):
         self.path = path
         # one generator for what loading draws (random colours, odometry errors)
         self._rng = np.random.default_rng(seed)
-        loaded = world_load.load(path, self._rng)
+        self.rand48 = Rand48(seed)     # drawn from while loading too (position models)
+        loaded = world_load.load(path, self._rng, self.rand48)
         self.resolution_m = loaded.resolution_m
         self.ppm = loaded.ppm
         self.interval_us = loaded.interval_us
@@ -105,7 +107,6 @@ class World(RangerCasts, RobotByRobot):
         self.updates = 0
         self.seed = seed
         self.random = Random(1 if seed is None else seed)
-        self.rand48 = Rand48(seed)
         self.noise = RangerNoise(self.random)
         self.scheduler = Scheduler(self.threads, self.random)
         self.ctrlargs = ctrlargs
@@ -232,6 +233,7 @@ class World(RangerCasts, RobotByRobot):
         """One World::Update (see the module docstring): every robot's update and move in
         motion.py's kernels (or robot by robot, _step_each, when a robot stands on another
         model), the updates of a queue taken as the models' indices."""
+        redraw_if_changed(self)     # models made, moved or resized since (runtime_models)
         if self.motion is None:
             self._step_each()
             return
@@ -340,6 +342,7 @@ class World(RangerCasts, RobotByRobot):
     def occupancy(self):
         """(grid bool [rows, cols] of the static bodies, filled, origin_x, origin_y,
         resolution_m); row 0 is the lowest y. Computed once."""
+        redraw_if_changed(self)
         if self._occupancy is None:
             self._occupancy = floor.filled(self._statics, self._static_cells,
                                            [r.start_pose[:2] for r in self.robots], self.ppm)

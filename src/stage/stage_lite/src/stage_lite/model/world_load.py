@@ -66,9 +66,11 @@ class LoadedWorld:
     show_clock_interval: int = 100
 
 
-def load(path, rng):
+def load(path, rng, rand48=None):
     """The world file at path, loaded (WorldError for what Stage refuses); rng draws what
-    Stage draws at random while loading (`color "random"`, odometry errors)."""
+    Stage draws at random while loading (`color "random"`), rand48 (glibc_random.Rand48,
+    the world's drand48 stream) the position models' odometry errors as their constructors
+    draw them (else rng draws those)."""
     wf = Worldfile(path)
     resolution_m = wf.read_float(0, 'resolution', 0.02)
     if not resolution_m > 0:
@@ -88,7 +90,7 @@ def load(path, rng):
     for name in TOP_LEVEL:
         if wf.exists(0, name):
             wf.read_string(0, name, '')
-    window, models = _load_models(wf, path, rng)
+    window, models = _load_models(wf, path, rng, rand48)
     ppm = 1.0 / resolution_m
     stageros_warnings = []
     robots, space, ray_zs, statics, static_cells = _post_load(models, ppm, stageros_warnings,
@@ -99,7 +101,7 @@ def load(path, rng):
                        stageros_warnings, threads, **flags)
 
 
-def _load_models(wf, path, rng):
+def _load_models(wf, path, rng, rand48):
     """World::Load's models: (the window block's properties or None, every model)."""
     world_dir = os.path.dirname(os.path.abspath(path))
     window = None
@@ -123,6 +125,8 @@ def _load_models(wf, path, rng):
                 raise WorldError(ent.path, ent.line, 'a %s inside a window( )' % ent.kind)
             m = CLASSES.get(ent.kind, Model)(world_dir, parent, ent.kind, len(models),
                                              ent.index, counts)
+            if rand48 is not None and isinstance(m, Position):
+                m.draw_integration_error(rand48)
             m.load(wf, rng)
             if ent.kind not in SIMULATED_TYPES:
                 wf.warnings.append('%s:%d: %s models are not simulated here; loaded as a'

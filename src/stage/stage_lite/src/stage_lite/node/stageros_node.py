@@ -53,7 +53,11 @@ from dataclasses import replace
 import rosgraph
 import rospy
 from course_common.param_loader import load_or_exit
-from course_common.rospy_internals import cheap_rosout, throttled_topic_checks
+from course_common.rospy_internals import (
+    cheap_rosout,
+    one_receive_thread,
+    throttled_topic_checks,
+)
 from course_common.schedule import BAD_INPUT_WARN_PERIOD_S, Throttle
 from course_common.startup import init_node
 
@@ -240,6 +244,7 @@ def main(argv=None):
     if exists and set_use_sim_time_early():
         loader.start()
     throttled_topic_checks()  # thousands of topics: rospy's checks after each registration
+    one_receive_thread()      # a cmd_vel connection a robot: one thread, not one each
     init_node('stageros')
     cheap_rosout()
     drop_own_clock_subscription()  # this node is the clock: it sets rospy's time itself

@@ -1,0 +1,83 @@
+"""One thread that waits on many sockets at once and hands each readable one to its reader.
+
+A rospy node gives every subscribed connection a thread of its own blocked in recv(); a
+node with thousands of connections (a swarm controller: two per robot) spends its time
+switching between them and fighting over the GIL. ReceiveThread does what roscpp's poll
+set does: one epoll wait over every socket, and for each socket with bytes, its reader,
+called in this thread. course_common.rospy_internals.one_receive_thread() plugs it under
+rospy's subscriptions. Imports no rospy.
+"""
+import contextlib
+import selectors
+import socket
+import threading
+
+
+class ReceiveThread:
+    """Waits on sockets; calls ``reader()`` for one that is readable, in its own thread.
+
+    ``add(sock, reader)``: from now on, ``reader()`` runs whenever ``sock`` has bytes (or an
+    error, or has been closed by the peer: recv tells the reader which). A reader returns
+    True to be called again, False to be dropped (it then owns the socket again). A reader
+    that raises is dropped too, and ``on_error(reader, error)`` is told. ``remove(sock)``
+    drops a socket: call it before closing the socket, so that its descriptor number is not
+    reused while still waited on. Both may be called from any thread; they take effect
+    before the thread next waits.
+    """
+
+    def __init__(self, name, on_error):
+        self._on_error = on_error
+        self._selector = selectors.DefaultSelector()
+        self._changes = []                      # ('add', sock, reader) / ('remove', sock)
+        self._lock = threading.Lock()
+        self._wake_read, self._wake_write = socket.socketpair()
+        self._wake_read.setblocking(False)
+        self._wake_write.setblocking(False)
+        self._selector.register(self._wake_read, selectors.EVENT_READ, None)
+        self._thread = threading.Thread(target=self._run, name=name, daemon=True)
+        self._thread.start()
+
+    def add(self, sock, reader):
+        self._change(('add', sock, reader))
+
+    def remove(self, sock):
+        self._change(('remove', sock))
+
+    def _change(self, change):
+        with self._lock:
+            self._changes.append(change)
+        with contextlib.suppress(BlockingIOError):  # full: the thread is awake already
+            self._wake_write.send(b'.')
+
+    def _apply_changes(self):
+        with contextlib.suppress(BlockingIOError):
+            while self._wake_read.recv(4096):
+                pass
+        with self._lock:
+            changes, self._changes = self._changes, []
+        for change in changes:
+            if change[0] == 'add':
+                _, sock, reader = change
+                try:
+                    self._selector.register(sock, selectors.EVENT_READ, reader)
+                except (KeyError, ValueError, OSError) as err:
+                    self._on_error(reader, err)    # closed before it could be waited on
+            else:
+                with contextlib.suppress(KeyError, ValueError):  # never added, or dropped
+                    self._selector.unregister(change[1])
+
+    def _run(self):
+        while True:
+            for key, _ in self._selector.select():
+                reader = key.data
+                if reader is None:
+                    self._apply_changes()
+                    continue
+                try:
+                    keep = reader()
+                except Exception as err:            # a reader's bug must not stop the others
+                    keep = False
+                    self._on_error(reader, err)
+                if not keep:
+                    with contextlib.suppress(KeyError, ValueError):
+                        self._selector.unregister(key.fileobj)
