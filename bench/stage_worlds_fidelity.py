@@ -1,18 +1,20 @@
 """stage_lite on Stage 4.3.0's own worlds, held to the real Stage's runs of them, no ROS.
 
-Run: `./ws bench stage_worlds_fidelity --worlds STAGE/worlds [--seconds S] [WORLD ...]` with
-STAGE/worlds a copy of Stage v4.3.0's worlds/ folder (GPL-2, not in this repository: see
-src/stage/stage_lite/test/golden/stage_worlds/README.md); without it the bench says so and
-does nothing. For each world with golden data (stage_worlds/<world>.npz, the real Stage's own
-runs), stage_lite runs it as `stage -g` does, in Stage's model order (model_order.json, read
-from a real run), for S simulated seconds (default: as long as the real runs, at most 60 s),
-and prints per world:
+Run: `./ws bench stage_worlds_fidelity --worlds STAGE/worlds [--seconds S] [--seed N]
+[WORLD ...]` with STAGE/worlds a copy of Stage v4.3.0's worlds/ folder (GPL-2, not in this
+repository: see src/stage/stage_lite/test/golden/stage_worlds/README.md); without it the
+bench says so and does nothing. For each world with golden data (stage_worlds/<world>.npz,
+the real Stage's own runs), stage_lite runs it as `stage -g` does, in Stage's model order
+(model_order.json, read from a real run), seeded with N (load_world's seed: random()'s and
+drand48's streams; default none, an unseeded process's, as Stage's random() is), for S
+simulated seconds (default: as long as the real runs, at most 60 s), and prints per world:
 - where the real runs part from each other (first step two runs differ by more than 1e-9 m),
   and the first step at which stage_lite differs from each real run (its poses are compared
   bit for bit over the first 100 steps the golden data keeps at float64);
 - per swarm statistic (path length, moving share, speed; alignment and spacing when
-  flocking), at how many of the one-second times stage_lite lies within the real runs'
-  min..max, and the figures at the last time;
+  flocking; for the foraging worlds the mean distance to the nearest source and sink and
+  the flags delivered per sink, also every minute), at how many of the one-second times
+  stage_lite lies within the real runs' min..max, and the figures at the last time;
 - load and run times (on a machine shared with nothing else, this is also a speed figure).
 With --no-race, every ranger casts after the moves (stage_lite without its model of Stage's
 worker-thread race, race.py), for a side-by-side comparison.
@@ -43,7 +45,7 @@ def first_difference(ours, real):
     return int(np.argmax(apart)) if apart.any() else None
 
 
-def check(world, folder, seconds, race=True):
+def check(world, folder, seconds, seed=None, race=True):
     """One world's line of figures (a dict)."""
     import numpy as np
     from stage_lite.model.world import load_world
@@ -59,13 +61,17 @@ def check(world, folder, seconds, race=True):
     os.chdir(os.path.dirname(path))      # worlds name their .inc and bitmaps from there
     try:
         t0 = time.perf_counter()
-        w = load_world(os.path.basename(path), stageros=False, model_order=order, race=race)
+        w = load_world(os.path.basename(path), seed=seed, stageros=False, model_order=order,
+                       race=race)
         load_s = time.perf_counter() - t0
+        sinks = [m for m in w.models if m.parent is None and m.token.endswith('sink')]
         poses = [[r.pose for r in w.robots]]
+        held = [[len(m.flags) for m in sinks]]
         t0 = time.perf_counter()
         for _ in range(steps):
             w.step()
             poses.append([r.pose for r in w.robots])
+            held.append([len(m.flags) for m in sinks])
         run_s = time.perf_counter() - t0
     finally:
         os.chdir(here)
@@ -74,8 +80,15 @@ def check(world, folder, seconds, race=True):
     n = min(prefix.shape[1], poses.shape[0])
     t_s = np.arange(poses.shape[0]) * dt
     times = np.array([t for t in data['stat_t_s'].astype(float) if t <= t_s[-1] + 1e-9])
-    ours = swarm_stats.swarm_stats(t_s, poses, times, flocking=world in FLOCKING)
+    places = {k: np.array(v) for k, v in meta.get('places', {}).items()}
+    ours = swarm_stats.swarm_stats(t_s, poses, times, flocking=world in FLOCKING,
+                                   places=places)
+    if places and sinks:     # what each sink holds beyond its start, as make_golden.py counts
+        held = np.array(held)
+        idx = swarm_stats.state_index(t_s, times)
+        ours['delivered_per_sink'] = (held[idx] - held[:1]).mean(axis=1)
     stats = {}
+    course = []
     for name, values in ours.items():
         key = 'stat_' + name
         if name == 't_s' or key not in data.files:
@@ -85,7 +98,11 @@ def check(world, folder, seconds, race=True):
         inside = (values >= lo - 1e-6) & (values <= hi + 1e-6)
         stats[name] = (int(inside.sum()), len(inside), float(values[-1]), float(lo[-1]),
                        float(hi[-1]))
-    return dict(world=world, robots=len(w.robots), runs=int(prefix.shape[0]),
+        if name == 'delivered_per_sink':     # deliveries come late: the whole course
+            course = [(t, values[i], lo[i], hi[i]) for i, t in enumerate(times)
+                      if t > 0 and t % 60 == 0]
+    return dict(world=world, robots=len(w.robots), course=course,
+                runs=int(prefix.shape[0]),
                 real_parting=meta['parting_state']['1e-9'],
                 ours=[first_difference(poses[:n], prefix[r, :n]) for r in range(prefix.shape[0])],
                 prefix=n - 1, seconds=steps * dt, load_s=load_s, run_s=run_s, stats=stats)
@@ -95,6 +112,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--worlds', help="a copy of Stage v4.3.0's worlds/ folder")
     parser.add_argument('--seconds', type=float, default=MAX_SECONDS)
+    parser.add_argument('--seed', type=int, help='the worlds\' seed (default: none)')
     parser.add_argument('--no-race', action='store_true',
                         help="every ranger casts after the moves (no model of Stage's race)")
     parser.add_argument('names', nargs='*', help='worlds (default: every golden one)')
@@ -114,8 +132,8 @@ def main(argv=None):
         if world not in known:
             sys.exit('unknown world %s (golden ones: %s)' % (world, ', '.join(known)))
         try:
-            r = check(world, args.worlds, args.seconds, race=not args.no_race)
-        except WorldError as err:    # a controller not ported yet (fasr2): say so, go on
+            r = check(world, args.worlds, args.seconds, args.seed, race=not args.no_race)
+        except WorldError as err:    # a world stage_lite cannot run: say so, go on
             print('| %s | | | not run: %s | | |' % (world, err), flush=True)
             continue
         ours = ', '.join('never (of %d)' % r['prefix'] if s is None else str(s) for s in r['ours'])
@@ -123,6 +141,9 @@ def main(argv=None):
         print('| %s | %d | %s | %s | %s | %.0f s in %.1f s (load %.1f s) |'
               % (r['world'], r['robots'], r['real_parting'], ours, stats, r['seconds'],
                  r['run_s'], r['load_s']), flush=True)
+        if r['course']:
+            print('|  | flags delivered per sink at %s |' % ', '.join(
+                '%.0f s: %.3g (real %.3g..%.3g)' % c for c in r['course']), flush=True)
 
 
 if __name__ == '__main__':

@@ -1,7 +1,9 @@
 """The step's kernels and batches do what the world's one-by-one code does, to the last bit:
-every robot's update and move (motion.py) against World._step_each, the fiducial finders'
-kernel against Fiducial.update_one_by_one, and the controllers' batches (expand_swarm,
-pioneer_flocking) against their callbacks called one by one."""
+every robot's update and move (motion.py) against World._step_each (power packs too), the
+fiducial finders' kernel against Fiducial.update_one_by_one, and the controllers' batches
+(expand_swarm, pioneer_flocking) against their callbacks called one by one."""
+import os
+
 import numpy as np
 import pytest
 from stage_lite.model import fiducial as fiducial_module
@@ -94,6 +96,24 @@ def test_the_kernels_move_every_robot_as_the_world_does_one_by_one(tmp_path, thr
     assert stalls > 0                    # the test drove into something
     if threads:                          # some casts were stale, some not
         assert 0 < np.concatenate(stale).sum() < np.concatenate(stale).size
+
+
+def test_the_kernels_draw_and_charge_power_packs_as_the_world_does_one_by_one():
+    # fasr2's foragers: packs drawn by speed and sensors, one docking and charging
+    path = os.path.join(os.path.dirname(__file__), '..', 'worlds', 'fasr2_small.world')
+    fast, each = load_world(path, seed=5), load_world(path, seed=5)
+    each.motion = None
+    assert fast.motion is not None
+    packs = [[r.model.power_pack for r in w.robots] for w in (fast, each)]
+    charged = 0
+    for step in range(300):
+        fast.step()
+        each.step()
+        assert_same(snapshot(fast), snapshot(each), step)
+        assert [(p.stored, p.charging) for p in packs[0]] == \
+            [(p.stored, p.charging) for p in packs[1]], step
+        charged += sum(p.charging for p in packs[0])
+    assert charged > 0 and packs[0][0].stored < packs[0][0].capacity    # both happened
 
 
 def flocking_world(tmp_path, n=12, columns=4, spacing=1.1):

@@ -1,7 +1,8 @@
-"""The beam rule Stage's wander and fasr share (examples/ctrl/wander.cc, fasr.cc), each with
-its own middle part and distances: something nearer than `front` in the middle beams, from
-n/part to n - n/part exclusive (integer division), is an obstruction; anything nearer than
-`stop` anywhere stops the robot; the left half is i > n/2, the right half the rest. Not a
+"""The beam rule Stage's wander, fasr and fasr2 share (examples/ctrl/wander.cc, fasr.cc,
+fasr2.cc), each with its own middle part and distances: something nearer than `front` in the
+middle beams, from n/part to n - n/part exclusive (integer division), is an obstruction;
+anything nearer than `stop` anywhere stops the robot; the left half is i > n/2, the right
+half the rest. And the avoid step fasr and fasr2 take on it (their ObstacleAvoid). Not a
 controller itself (no init)."""
 import numpy as np
 
@@ -14,6 +15,21 @@ def beam_rule(scan, part, front, stop):
     obstruction, too_close, min_left, min_right = _beam_rule(
         np.asarray(scan, np.float64), part, front, stop)
     return bool(obstruction), bool(too_close), min_left, min_right
+
+
+def avoid_step(pos, scan, count, front, stop, speed, turn, duration):
+    """fasr's and fasr2's ObstacleAvoid on a laser scan (middle half: part 4), with its avoid
+    count: (True while avoiding, the count after this call). Something ahead, too close or
+    a count left: creep at `speed` (stand if too close); a new avoid turns `turn` rad/s away
+    from the nearer side for random() % duration + duration calls (the world's stream)."""
+    obstruction, too_close, min_left, min_right = beam_rule(scan, 4, front, stop)
+    if not (obstruction or too_close or count > 0):
+        return False, count
+    pos.set_x_speed(0.0 if too_close else speed)
+    if count < 1:
+        count = pos.world.random() % duration + duration
+        pos.set_turn_speed(-turn if min_left < min_right else turn)
+    return True, count - 1
 
 
 @njit(cache=True)

@@ -26,7 +26,8 @@ import math
 
 from stage_lite.model.stage_api import normalize
 
-from ._avoid import beam_rule
+from ._avoid import avoid_step, beam_rule
+from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -43,10 +44,6 @@ SINK_RADIUS = 1.0         # m
 CHARGER_ID = 2            # the charging stations' fiducial_return
 HUNGRY = 0.25             # of the pack's capacity
 FULL = 0.95
-DOCK_NEAR = 0.5           # m: closer than this, creep
-DOCK_CREEP = 0.02         # m/s
-DOCK_CLOSE = 0.08         # m: stop
-DOCK_BACK = -0.01         # m/s when stalled against it
 UNDOCK_DISTANCE = 0.3     # m
 UNDOCK_SPEED = -0.05      # m/s
 
@@ -65,7 +62,6 @@ REFUEL = ((0, 0, 45, 120),
           (-90, -90, 180, 180),
           (-90, -180, -90, -90))
 
-MODE_WORK, MODE_DOCK, MODE_UNDOCK = 'work', 'dock', 'undock'
 
 
 def init(model, args):
@@ -109,14 +105,9 @@ class Forager:
             raise LookupError('%s carries no unused fiducial finder' % position.token)
         self.source = source
         self.sink = sink
-        self.avoid_count = 0
+        start_working(self)
         self.work_get = 0
         self.work_put = 0
-        self.charger_ahoy = False
-        self.charger_bearing = 0.0
-        self.charger_range = 0.0
-        self.charger_heading = 0.0
-        self.mode = MODE_WORK
         self.at_dest = False
         position.add_callback('update', self.position_update)
         position.subscribe()
@@ -134,29 +125,14 @@ class Forager:
 
     # ---- the modes -----------------------------------------------------------------------
     def laser_update(self, laser, _):
-        if self.mode == MODE_DOCK:
-            self.dock()
-        elif self.mode == MODE_WORK:
-            self.work()
-        else:
-            self.undock()
+        run_mode(self)
         return False
 
     def dock(self):
         pos = self.pos
         if self.charger_ahoy:
-            a_goal = normalize(self.charger_bearing)
-            if self.charger_range > DOCK_NEAR:
-                if not self.obstacle_avoid():
-                    pos.set_x_speed(CRUISE_SPEED)
-                    pos.set_turn_speed(a_goal)
-            else:
-                pos.set_turn_speed(a_goal)
-                pos.set_x_speed(DOCK_CREEP)
-                if self.charger_range < DOCK_CLOSE:
-                    pos.stop()
-                if pos.stalled():
-                    pos.set_x_speed(DOCK_BACK)
+            approach(pos, self.charger_range, normalize(self.charger_bearing),
+                     self.obstacle_avoid)
         else:
             pos.stop()
             self.mode = MODE_WORK
@@ -182,16 +158,10 @@ class Forager:
 
     def obstacle_avoid(self):
         """True while avoiding (speed and turn set here)."""
-        obstruction, stop, min_left, min_right = scan_rule(self.laser.sensors[0].ranges)
-        if not (obstruction or stop or self.avoid_count > 0):
-            return False
-        pos = self.pos
-        pos.set_x_speed(0.0 if stop else AVOID_SPEED)
-        if self.avoid_count < 1:
-            self.avoid_count = pos.world.random() % AVOID_DURATION + AVOID_DURATION
-            pos.set_turn_speed(-AVOID_TURN if min_left < min_right else AVOID_TURN)
-        self.avoid_count -= 1
-        return True
+        busy, self.avoid_count = avoid_step(
+            self.pos, self.laser.sensors[0].ranges, self.avoid_count, MIN_FRONT_DISTANCE,
+            STOP_DISTANCE, AVOID_SPEED, AVOID_TURN, AVOID_DURATION)
+        return busy
 
     # ---- the other callbacks -------------------------------------------------------------
     def position_update(self, pos, _):

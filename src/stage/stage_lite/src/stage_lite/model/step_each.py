@@ -1,8 +1,8 @@
 """The World's step robot by robot, and Stage's position model (no rospy).
 
 World.step runs every robot's update and move in motion.py's kernels; where those cannot
-(a robot standing on another model, a model order other than the file's, power packs whose
-draw follows each update), the World steps as here: the same rules, one robot at a time.
+(a robot standing on another model, a model order other than the file's), the World steps
+as here: the same rules, one robot at a time.
 test_stage_batches.py holds the two to the same run, bit for bit.
 """
 

@@ -10,7 +10,7 @@ angular noise, and Stage's lasernoise controller on it), Stage's wander on one r
 expand_swarm and pioneer_flocking on two others (their batches' kernels) calls every kernel
 with the argument types stageros uses (test_stage_warmup.py checks that none is left out);
 a second world, whose robot stands on another model, the kernels a World moving its robots
-one by one calls.
+one by one calls; fasr2's planner is called on its own.
 """
 import glob
 import hashlib
@@ -74,6 +74,15 @@ def warm():
         world.set_command(0, 0.1, 0.0, 0.1)
         for _ in range(2):
             world.step()
+    warm_planner()
+
+
+def warm_planner():
+    """fasr2's A* search and its plans' advice, with the types fasr2 calls them with."""
+    from stage_lite.controllers._astar import astar
+    from stage_lite.controllers._fasr2_plans import Plan
+    astar([1, 1, 9, 1], 2, 2, (0, 0), (1, 1))
+    Plan([0.5], [0.5]).good_direction(0.0, 0.0)
 
 
 def warm_sensors(world):

@@ -118,11 +118,11 @@ class World(RangerCasts, RobotByRobot):
         self.energy = Energy(self, self._rank.__getitem__)   # energy.py: packs, charging
         self.scheduler.lifecycle = self.energy
         # the robots' updates and moves in kernels, when every robot is a top-level model
-        # (its pose its world pose), moved in file order (no other model order given) and
-        # no model has a power pack (the energy model follows each update); else robot by
-        # robot (_step_each)
+        # (its pose its world pose) moved in file order (no other model order given); else
+        # robot by robot (_step_each)
         fast = (all(r.model.parent is None for r in self.robots)
-                and self._movers == self.robots and not self.energy.has_packs())
+                and self._movers == self.robots)
+        self._packs = self.energy.has_packs()
         self.motion = Motion(self.robots, self.space) if fast else None
         self._robot_slot = np.full(len(self.models), -1, np.int64)
         for r in self.robots:
@@ -248,7 +248,12 @@ class World(RangerCasts, RobotByRobot):
             self.fiducial_index.begin_step()
         updated = [scheduler.due_indices(0, now)]
         slots = self._robot_slot[updated[0]]
-        self.motion.update(self.robots, self.state, slots[slots >= 0], subscribed, dt)
+        slots = slots[slots >= 0]
+        if self._packs:      # the power each update draws, from the velocity it is commanded
+            for s in slots[subscribed[slots]].tolist():
+                r = self.robots[s]
+                self.energy.position_updated(r.model, r.commanded_velocity(dt))
+        self.motion.update(self.robots, self.state, slots, subscribed, dt)
         if self._any_blobfinder:
             for i in updated[0][self._kind[Blobfinder][updated[0]]].tolist():
                 models[i].update(self.sight, sensing)     # beside the position updates
@@ -270,6 +275,8 @@ class World(RangerCasts, RobotByRobot):
                 update_all(finders, self.fiducial_index, self.sight, sensing)
         self._call_updates(every, with_callbacks)
         scheduler.call_world(self)
+        if self._packs:
+            self.energy.update()            # Stage's UpdateCharge of active_energy
         if rangers.size:
             self._refresh_view_slots(rangers)   # what stageros then reads, callbacks' changes in
         self.updates += 1
