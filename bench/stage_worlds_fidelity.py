@@ -16,6 +16,8 @@ simulated seconds (default: as long as the real runs, at most 60 s), and prints 
   the flags delivered per sink, also every minute), at how many of the one-second times
   stage_lite lies within the real runs' min..max, and the figures at the last time;
 - load and run times (on a machine shared with nothing else, this is also a speed figure).
+With --no-race, every ranger casts after the moves (stage_lite without its model of Stage's
+worker-thread race, race.py), for a side-by-side comparison.
 """
 import argparse
 import json
@@ -43,7 +45,7 @@ def first_difference(ours, real):
     return int(np.argmax(apart)) if apart.any() else None
 
 
-def check(world, folder, seconds, seed=None):
+def check(world, folder, seconds, seed=None, race=True):
     """One world's line of figures (a dict)."""
     import numpy as np
     from stage_lite.model.world import load_world
@@ -59,7 +61,8 @@ def check(world, folder, seconds, seed=None):
     os.chdir(os.path.dirname(path))      # worlds name their .inc and bitmaps from there
     try:
         t0 = time.perf_counter()
-        w = load_world(os.path.basename(path), seed=seed, stageros=False, model_order=order)
+        w = load_world(os.path.basename(path), seed=seed, stageros=False, model_order=order,
+                       race=race)
         load_s = time.perf_counter() - t0
         sinks = [m for m in w.models if m.parent is None and m.token.endswith('sink')]
         poses = [[r.pose for r in w.robots]]
@@ -110,6 +113,8 @@ def main(argv=None):
     parser.add_argument('--worlds', help="a copy of Stage v4.3.0's worlds/ folder")
     parser.add_argument('--seconds', type=float, default=MAX_SECONDS)
     parser.add_argument('--seed', type=int, help='the worlds\' seed (default: none)')
+    parser.add_argument('--no-race', action='store_true',
+                        help="every ranger casts after the moves (no model of Stage's race)")
     parser.add_argument('names', nargs='*', help='worlds (default: every golden one)')
     args, _ = parser.parse_known_args(argv)   # ./ws bench passes other benches' options too
     if not args.worlds or not os.path.isdir(args.worlds):
@@ -127,7 +132,7 @@ def main(argv=None):
         if world not in known:
             sys.exit('unknown world %s (golden ones: %s)' % (world, ', '.join(known)))
         try:
-            r = check(world, args.worlds, args.seconds, args.seed)
+            r = check(world, args.worlds, args.seconds, args.seed, race=not args.no_race)
         except WorldError as err:    # a world stage_lite cannot run: say so, go on
             print('| %s | | | not run: %s | | |' % (world, err), flush=True)
             continue

@@ -72,11 +72,16 @@ def drive(w):
     w.set_command(5, 1.0, 0.0, 0.0)
 
 
-def test_the_kernels_move_every_robot_as_the_world_does_one_by_one(tmp_path):
-    path = write(tmp_path, LASER + DRIVES)
+@pytest.mark.parametrize('threads', ['', 'threads 3\n'])   # with Stage's race (race.py)
+def test_the_kernels_move_every_robot_as_the_world_does_one_by_one(tmp_path, threads):
+    path = write(tmp_path, threads + LASER + DRIVES)
     fast, each = load_world(path, seed=3), load_world(path, seed=3)
     each.motion = None                  # World._step_each: robot by robot, Python
     assert fast.motion is not None
+    stale = []
+    if threads:
+        draw = fast.race.stale
+        fast.race.stale = lambda *a: stale.append(draw(*a)) or stale[-1]
     drive(fast)
     drive(each)
     stalls = 0
@@ -89,6 +94,8 @@ def test_the_kernels_move_every_robot_as_the_world_does_one_by_one(tmp_path):
             for a, b in zip(v.rangers, u.rangers, strict=True):
                 assert a.ranges.tobytes() == b.ranges.tobytes(), step
     assert stalls > 0                    # the test drove into something
+    if threads:                          # some casts were stale, some not
+        assert 0 < np.concatenate(stale).sum() < np.concatenate(stale).size
 
 
 def test_the_kernels_draw_and_charge_power_packs_as_the_world_does_one_by_one():

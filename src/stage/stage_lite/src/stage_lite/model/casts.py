@@ -13,6 +13,7 @@ import numpy as np
 
 from .jit import njit
 from .motion import Chains, elements
+from .race import WorkerRace
 from .ranger import Ranger
 
 
@@ -82,6 +83,8 @@ class RangerCasts:
             if g not in chain:
                 chain[g] = elements(g, [g.geom_pose])
         # elements(g, [g.geom_pose, g.ray_local(s)]): the ranger's chain then a plain tail
+        self._sensor_robot = np.array([r for r, _, _ in carried], np.int64)
+        self._top_level_robots = all(r.model.parent is None for r in self.robots)
         self._origin_chains = Chains(
             [(r, chain[g] + [(tuple(g.ray_local(s)), False, 0.0)]) for r, g, s in carried],
             [(g.index, len(chain[g])) for _, g, _ in carried])
@@ -104,6 +107,30 @@ class RangerCasts:
                 v.intensities = self._view_intensities[at]
         self._slots_cache = {}
         self._views_without_data = sum(1 for v in views if v is not None and not v.has_data)
+
+    def _worker_race(self, seed):
+        """The world's WorkerRace (race.py), None with one worker thread."""
+        if not WorkerRace.applies(self.threads):
+            return None
+        off = self._ranger_sensor_off
+        offsets = self._rays['offsets']
+        return WorkerRace(self.threads, seed, offsets[off[1:]] - offsets[off[:-1]],
+                          self._sensor_robot[off[:-1]], [len(r.block_ids) for r in self.robots],
+                          [r.index for r in self._movers])
+
+    def _stale(self, updated, chosen):
+        """This step's race: per updated model (`updated`: each queue's, model indices or
+        models, in update order) where `chosen` (the rangers), whether it casts from its
+        robot's pose before the move; None without a race."""
+        if self.race is None:
+            return None
+        queue = np.repeat(np.arange(len(updated)), [len(u) for u in updated])[chosen]
+        if all(isinstance(u, np.ndarray) for u in updated):
+            every = np.concatenate(updated)
+        else:
+            every = np.array([m.index for u in updated for m in u], np.int64)
+        moving = (self.state.velocity != 0.0).any(axis=1)
+        return self.race.stale(queue, self._ranger_slot[every[chosen]], moving)
 
     def _ray_tables(self, due):
         """The per-sensor tables of the sensors `due` (indices into _sensors) for
@@ -160,10 +187,13 @@ class RangerCasts:
                     v.has_data = True
                     self._views_without_data -= 1
 
-    def cast_rays(self, due=None, layer=None):
+    def cast_rays(self, due=None, layer=None, stale=None, before=None):
         """Casts the rays of the sensors `due` (indices into the world's sensors, in the
         order their noise is drawn; default all) from the robots' poses now, through `layer`
-        (default: the one the next step's rays read), and stores each sensor's readings."""
+        (default: the one the next step's rays read), and stores each sensor's readings.
+        stale (bool per due sensor): those cast from their robot's pose `before` this
+        step's move instead (race.py; `before`: the robots' poses then, a copy of
+        state.pose)."""
         if layer is None:
             layer = (self.updates + 1) % 2
         due = self._all_sensors if due is None else np.asarray(due, np.int64)
@@ -177,6 +207,11 @@ class RangerCasts:
             for i, k in enumerate(positions.tolist()):
                 g, s = self._sensors[k]
                 origins[i] = g.ray_origin(s)
+        stale_rows = None
+        if stale is not None and stale.any():
+            stale_rows = np.zeros(len(positions), np.bool_)
+            stale_rows[np.searchsorted(positions, due[stale])] = True
+            self._stale_origins(positions, stale_rows, before, origins)
         rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
                                    tables['rmax'], tables['ray_class'], tables['root'], layer)
         rr = self.space.model_rr
@@ -184,7 +219,8 @@ class RangerCasts:
         offsets = tables['offsets']
         # each due sensor's row of the cast (its last, as a dict of them would say)
         rows = due if every else np.searchsorted(positions, due, side='right') - 1
-        self._draw_noise(rng, offsets, rows, positions, layer)
+        self._draw_noise(rng, offsets, rows, positions, layer, None if stale_rows is None
+                         else np.where(stale_rows[:, None], origins, np.nan))
         if every:
             self._beam_ranges[:] = rng
             self._beam_intensities[:] = intensities
@@ -192,10 +228,33 @@ class RangerCasts:
             self._beam_ranges[tables['beams']] = rng
             self._beam_intensities[tables['beams']] = intensities
 
-    def cast_ranger_slots(self, slots, layer):
+    def cast_ranger_slots(self, slots, layer, stale=None, before=None):
         """cast_rays of every sensor of the rangers `slots` (int64 array of ranger slots, in
-        the order they updated)."""
-        self.cast_rays(self._slot_indices(slots)[0], layer)
+        the order they updated); stale: a bool per slot, its sensors cast from `before`."""
+        sensors = self._slot_indices(slots)[0]
+        if stale is not None:
+            off = self._ranger_sensor_off
+            stale = np.repeat(stale, off[slots + 1] - off[slots])
+        self.cast_rays(sensors, layer, stale, before)
+
+    def _stale_origins(self, positions, stale_rows, before, origins):
+        """origins[i] of the sensors positions[i] where stale_rows[i]: from their robots'
+        poses `before` the move (rows as state.pose's; see cast_rays)."""
+        at = np.flatnonzero(stale_rows)
+        if self._top_level_robots:      # the chains carry a robot's pose as ray_origin does
+            out = np.empty((at.size, 4), np.float64)
+            self._origin_chains.poses(positions[at], before, out)
+            origins[at] = out
+            return
+        for i in at.tolist():
+            g, s = self._sensors[positions[i]]
+            model = self.robots[self._sensor_robot[positions[i]]].model
+            keep = model.pose
+            model.pose = tuple(before[self._sensor_robot[positions[i]]])
+            try:
+                origins[i] = g.ray_origin(s)
+            finally:
+                model.pose = keep
 
     def _slot_indices(self, slots):
         """(their sensors, their views' beams, the sensor beams those views show) of the
@@ -214,10 +273,10 @@ class RangerCasts:
                                                _ranges_of(src, src + count))
         return cached
 
-    def _draw_noise(self, rng, offsets, rows, positions, layer):
+    def _draw_noise(self, rng, offsets, rows, positions, layer, stale_origins=None):
         """Stage's draws of each sensor (rows of the cast, in Stage's order), noise added to
         rng in place; a sensor with angular noise casts its beams again, one at a time, at
-        the angles its draws turn them to."""
+        the angles its draws turn them to (from stale_origins' row where it is not NaN)."""
         sensor_of = np.asarray(positions, np.int64)
         angular = self._noise['angular'][sensor_of]
         if not angular.any():
@@ -235,13 +294,16 @@ class RangerCasts:
                                       self._noise['prop'][sensor_of],
                                       self._noise['const'][sensor_of])
                 continue
-            rng[beams] = self._angular_scan(g, s, layer)
+            origin = None
+            if stale_origins is not None and not np.isnan(stale_origins[i, 0]):
+                origin = tuple(stale_origins[i])
+            rng[beams] = self._angular_scan(g, s, layer, origin)
 
-    def _angular_scan(self, g, s, layer):
+    def _angular_scan(self, g, s, layer, origin=None):
         """A sensor with angular noise, beam by beam as Sensor::Update casts it: each beam's
         angle (kept as a float, as Stage's is) turned by its draw, cast, then its range
-        noise drawn."""
-        x, y, z, a = g.ray_origin(s)
+        noise drawn; from `origin` if given, else from the robot's pose now."""
+        x, y, z, a = g.ray_origin(s) if origin is None else origin
         incr = Ranger.sample_increment(s)
         tables = self._ray_tables([self._sensors.index((g, s))])
         tables['sensor'] = np.zeros(1, np.int64)

@@ -9,7 +9,8 @@ update_interval later. Each step, World::Update takes queue 0's due models in th
 thread, the workers' beside the moves, then, in series, calls the update callbacks of every
 model that updated, queue by queue in the order they updated, then the world's callbacks.
 The workers' queues are taken here one after the other, 1 to threads: in Stage they race
-each other, so any fixed order is one Stage could have given.
+each other, so any fixed order is one Stage could have given (which of their rangers cast
+before the moves is race.py's model of that race).
 
 Batches: a model whose only update callback has a `batch` attribute may have it called
 together with the next models' of the same batch (World.step does so), through

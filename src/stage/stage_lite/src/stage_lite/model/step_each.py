@@ -36,6 +36,7 @@ class RobotByRobot:
                 m.update(self.sight, (self.updates + 1) % 2)
         self.cameras.update(now)
         layer = self.updates % 2
+        before = self.state.pose.copy() if self.race is not None else None
         for r in self._movers:                    # Stage's active_velocity, in its order
             old = r.pose
             if scheduler.subscribed(r.model):
@@ -45,10 +46,15 @@ class RobotByRobot:
                              stage_normalize(new[2] - old[2]) / dt)
         for queue in range(1, self.threads + 1):
             updated.append(scheduler.due(queue, now))
+        chosen = np.array([m in self._sensor_ids for models in updated for m in models],
+                          np.bool_)
         rangers = [m for models in updated for m in models if m in self._sensor_ids]
         if rangers:
+            stale = self._stale(updated, chosen)
+            if stale is not None:
+                stale = np.repeat(stale, [len(self._sensor_ids[g]) for g in rangers])
             self.cast_rays([k for g in rangers for k in self._sensor_ids[g]],
-                           (self.updates + 1) % 2)
+                           (self.updates + 1) % 2, stale, before)
         for models in updated[1:]:
             for m in models:
                 if isinstance(m, Fiducial):

@@ -20,10 +20,12 @@ interval_sim:
    new pose; if it then overlaps an obstacle of another model in that layer whose height
    range meets its own, the move is undone and the robot is stalled;
 3. the workers' due models, queue by queue: each ranger casts every sensor's rays from its
-   robot's pose after the move, through layer ((updates + 1) % 2): the bodies as drawn in
-   the previous step (STAGE_RAYS_READ_LAST_LAYER; in Stage the rangers run in worker threads
-   beside the moves), then draws its noise from random() beam by beam (noise.py); each
-   fiducial finder looks for the fiducial-bearing models around it;
+   robot's pose after the move (with several worker threads, those that race.py's model
+   of Stage's race starts before their robot's move: from the pose before it), through
+   layer ((updates + 1) % 2): the bodies as drawn in the previous step
+   (STAGE_RAYS_READ_LAST_LAYER; in Stage the rangers run in worker threads beside the
+   moves), then draws its noise from random() beam by beam (noise.py); each fiducial
+   finder looks for the fiducial-bearing models around it;
 4. the update callbacks of every model that updated (the controllers), queue by queue, then
    the world's callbacks, then the energy model's charge update (energy.py);
 5. stageros publishes: odom = the estimate and the velocity, ground truth = the world pose.
@@ -58,16 +60,20 @@ __all__ = ['World', 'WorldError', 'load_world']
 class World(RangerCasts, RobotByRobot):
     """A loaded world. Use load_world()."""
 
-    def __init__(self, path, seed=None, stageros=True, ctrlargs='', model_order=None):
+    def __init__(self, path, seed=None, stageros=True, ctrlargs='', model_order=None,
+                 race=True):
         """seed: random()'s srandom and drand48's srand48 (default: an unseeded process's,
-        srandom(1) and glibc's zero drand48 state), and the load-time draws' generator;
+        srandom(1) and glibc's zero drand48 state), the load-time draws' generator and
+        the worker-thread race's (race.py; seed None draws as seed 1);
         stageros: subscribe every robot and its rangers as stageros does (else only what
         the controllers subscribe, as Stage's `stage`); ctrlargs: `stage -a`'s argument
         string, World::ctrlargs, given to every controller; model_order: the models'
         tokens in the order of Stage's World::models, a set of pointers ordered by the
         models' addresses in memory (STAGE_MODEL_POINTER_ORDER): the order Stage starts the
         controllers, moves the robots and lists a finder's readings in. It follows nothing
-        in the world (the same at every run of one program); without it, file order."""
+        in the world (the same at every run of one program); without it, file order.
+        race: with several worker threads, model Stage's race (race.py; False: every ranger
+        casts after the moves)."""
         self.path = path
         # one generator for what loading draws (random colours, odometry errors)
         self._rng = np.random.default_rng(seed)
@@ -132,6 +138,7 @@ class World(RangerCasts, RobotByRobot):
         # its own (the same run: the tests compare the two)
         self.batches = True
         self._prepare_rays()
+        self.race = self._worker_race(seed) if race else None   # who casts before the moves
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models, rank=self._rank.__getitem__)
         if self.motion is not None:
@@ -251,14 +258,16 @@ class World(RangerCasts, RobotByRobot):
             for i in updated[0][self._kind[Blobfinder][updated[0]]].tolist():
                 models[i].update(self.sight, sensing)     # beside the position updates
         self.cameras.update(now)
+        before = self.state.pose.copy() if self.race is not None else None
         self.motion.move(self.state, subscribed, dt, self.updates % 2)
         for queue in range(1, self.threads + 1):
             updated.append(scheduler.due_indices(queue, now))
         every = np.concatenate(updated)
         rangers = self._ranger_slot[every]
-        rangers = rangers[rangers >= 0]
+        is_ranger = rangers >= 0
+        rangers = rangers[is_ranger]
         if rangers.size:
-            self.cast_ranger_slots(rangers, sensing)
+            self.cast_ranger_slots(rangers, sensing, self._stale(updated, is_ranger), before)
         if self._any_finder:
             finders = [models[i] for ids in updated[1:]
                        for i in ids[self._kind[Fiducial][ids]].tolist()]
@@ -359,7 +368,7 @@ def finite_float(name, value):
     return float(value)
 
 
-def load_world(path, seed=None, stageros=True, ctrlargs='', model_order=None):
+def load_world(path, seed=None, stageros=True, ctrlargs='', model_order=None, race=True):
     """Parses the world file (includes, bitmaps) into a World and starts its controllers
     (see World); raises WorldError."""
     if not os.path.isfile(path):
@@ -369,7 +378,7 @@ def load_world(path, seed=None, stageros=True, ctrlargs='', model_order=None):
     collecting = gc.isenabled()
     gc.disable()
     try:
-        return World(path, seed, stageros, ctrlargs, model_order)
+        return World(path, seed, stageros, ctrlargs, model_order, race)
     finally:
         if collecting:
             gc.enable()
