@@ -305,11 +305,13 @@ def test_the_kernel_is_the_rule_as_written_in_crowds_and_at_the_edges(tmp_path):
     # sorting, many by a pass over all), some exactly on the field of view's and the
     # range's edges, with fovs of 0, 90, 180, 300 and 360 degrees
     rng = np.random.default_rng(7)
+    # tolist(): Python floats, whose %r is the number (numpy 2's is np.float64(...))
     targets = ['model( name "t%d" pose [ %r %r 0 %r ] size [ 0.2 0.2 0.5 ]'
                ' fiducial_return %d )' % (k, x, y, a, k + 1)
-               for k, (x, y, a) in enumerate(zip(rng.uniform(-30, 30, 150),
-                                                rng.uniform(-30, 30, 150),
-                                                rng.uniform(-180, 180, 150), strict=True))]
+               for k, (x, y, a) in enumerate(zip(rng.uniform(-30, 30, 150).tolist(),
+                                                rng.uniform(-30, 30, 150).tolist(),
+                                                rng.uniform(-180, 180, 150).tolist(),
+                                                strict=True))]
     edges = [(3.0, 3.0), (3.0, -3.0), (0.0, 4.0), (-2.0, 0.0), (5.0, 0.0)]
     targets += ['model( name "e%d" pose [ %r %r 0 0 ] size [ 0.2 0.2 0.5 ]'
                 ' fiducial_return 1 )' % (k, x, y) for k, (x, y) in enumerate(edges)]
