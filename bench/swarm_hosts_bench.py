@@ -32,7 +32,7 @@ from course_common.processes import descendants
 from course_common.waiting import wait_for
 from multihost.harness import Team
 from multihost.hosts import Hosts, unavailable_reason
-from multihost.lessons import start_roscore, start_swarm
+from multihost.lessons import start_swarm
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import stage_bench  # bench/ is not a package: found through sys.path above
@@ -96,25 +96,13 @@ def run(hosts, layout, robots, window_s, log_dir):
     team = Team(hosts, log_dir)
     clock = Clock()
     try:
-        if layout['swarm_b'] is None:       # one node driving every robot
-            start_roscore(team)
-            team.start('sim', 1, ['roslaunch', 'swarm', 'swarm.launch', 'robots:=%d' % robots,
-                                  'controller:=false', 'speedup:=-1'],
-                       extra_env={'DISPLAY': None})
-            started = time.monotonic()
-            team.start('swarm_a', layout['swarm_a'],
-                       ['rosrun', 'swarm', 'swarm_controller', '__name:=swarm_a',
-                        '_robots:=%d' % robots])
-            nodes = ['swarm_a']
-        else:
-            started = time.monotonic()
-            start_swarm(team, robots, layout, speedup=-1, probe=False)
-            nodes = ['swarm_a', 'swarm_b']
+        start_swarm(team, robots, layout, speedup=-1, probe=False)
+        nodes = [n for n in ('swarm_a', 'swarm_b') if layout[n] is not None]
         team.start('clock', 1, [sys.executable, '-c', CLOCK_WATCHER], on_line=clock.on_line)
         wait_for(lambda: all(team.procs[n].printed(FIRST_SCANS_LINE) for n in nodes),
                  START_DEADLINE_S, 'every first scan at the controllers',
                  alive=lambda: not team.exited())
-        start_s = time.monotonic() - started
+        start_s = time.time() - team.started_at['swarm_a']     # the controllers' start
         time.sleep(WARMUP_S)        # the measurement's warm-up, not a wait for a condition
         sim0, wall0 = wait_for(clock.read, START_DEADLINE_S, '/clock')
         cpu0 = [tree_cpu_s(team.procs[n]) for n in ['sim', *nodes]]

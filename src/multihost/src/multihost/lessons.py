@@ -84,18 +84,20 @@ def start_convoy(team, layout=None, pose_period_s=0.1):
 
 
 def start_swarm(team, robots, layout=None, speedup=1.0, probe=True):
-    """swarm.launch's stageros (no controller) on the layout's sim host, the first half of
-    the robots driven by swarm_a's swarm_controller, the rest by swarm_b's; a probe on host 1
-    printing every robot's ground-truth pose (probe False: none, and None returned)."""
+    """swarm.launch's stageros (no controller) on the layout's sim host and the robots split
+    between the layout's controllers (swarm_a's the first half, swarm_b's the rest; a layout
+    whose swarm_b is None: swarm_a drives them all); a probe on host 1 printing every
+    robot's ground-truth pose (probe False: none, and None returned)."""
     layout = layout or SWARM_HOSTS
     names = ['robot_%d' % i for i in range(robots)]
     watcher = start_master(team, names, stage=True) if probe else start_roscore(team)
     team.start('sim', layout['sim'],
                ['roslaunch', 'swarm', 'swarm.launch', 'robots:=%d' % robots,
                 'controller:=false', 'speedup:=%g' % speedup], extra_env={'DISPLAY': None})
-    half = robots // 2
+    half = robots // 2 if layout.get('swarm_b') else robots
     for name, first, count in (('swarm_a', 0, half), ('swarm_b', half, robots - half)):
-        team.start(name, layout[name],
-                   ['rosrun', 'swarm', 'swarm_controller', '__name:=' + name,
-                    '_first:=%d' % first, '_robots:=%d' % count])
+        if count:
+            team.start(name, layout[name],
+                       ['rosrun', 'swarm', 'swarm_controller', '__name:=' + name,
+                        '_first:=%d' % first, '_robots:=%d' % count])
     return watcher

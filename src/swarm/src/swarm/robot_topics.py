@@ -35,10 +35,11 @@ def scan_robots(topic_names):
     return sorted(found)
 
 
-def missing_robots(indices, count):
-    """The robots 0..count-1 that indices lacks, in order."""
+def missing_robots(indices, wanted):
+    """The robots of `wanted` (an iterable of robot numbers, such as a range) that indices
+    lacks, in wanted's order."""
     have = set(indices)
-    return [i for i in range(count) if i not in have]
+    return [i for i in wanted if i not in have]
 
 
 def driven_robots(first, robots, world_count=None):

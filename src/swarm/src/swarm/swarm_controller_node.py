@@ -196,7 +196,7 @@ def discover_count(hold_s):
         if count != last:
             last, since = count, now
         elif count and now - since >= hold_s:
-            gaps = missing_robots(found, found[-1] + 1)
+            gaps = missing_robots(found, range(found[-1] + 1))
             if gaps:
                 rospy.logwarn('swarm: robots numbered up to %d but no scan topic for %s',
                               found[-1], first_few(gaps))
@@ -213,8 +213,7 @@ def check_ids(ids):
     """WARN if the master lists no scan for some robots driven, or (a node driving from
     robot_0) scans of more robots than it drives."""
     found = scan_robots(published_topics())
-    have = set(found)
-    missing = [i for i in ids if i not in have]
+    missing = missing_robots(found, ids)
     if found and missing:
         rospy.logwarn('swarm: told to drive robot_%d to robot_%d but stageros publishes no '
                       'scan for %s: those robots stay still until it does', ids[0], ids[-1],

@@ -27,7 +27,7 @@ def test_scan_robots_and_the_missing_ones():
              '/robot_10/base_scan', '/robot_x/base_scan', '/robot_3/base_scan_0']
     found = robot_topics.scan_robots(names)
     assert found == [0, 2, 10]
-    assert robot_topics.missing_robots(found, 4) == [1, 3]
+    assert robot_topics.missing_robots(found, range(4)) == [1, 3]
     assert robot_topics.first_few(list(range(8)), shown=2) == 'robot_0, robot_1, ... (8 in all)'
 
 
