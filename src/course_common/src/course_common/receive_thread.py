@@ -16,8 +16,10 @@ import threading
 class ReceiveThread:
     """Waits on sockets; calls ``reader()`` for one that is readable, in its own thread.
 
-    ``add(sock, reader)``: from now on, ``reader()`` runs whenever ``sock`` has bytes (or an
-    error, or has been closed by the peer: recv tells the reader which). A reader returns
+    ``add(sock, reader, first=None)``: from now on, ``reader()`` runs whenever ``sock`` has
+    bytes (or an error, or has been closed by the peer: recv tells the reader which);
+    ``first()``, if given, runs once in the thread before that (for bytes read from the
+    socket before it was added), and returning False drops the socket. A reader returns
     True to be called again, False to be dropped (it then owns the socket again). A reader
     that raises is dropped too, and ``on_error(reader, error)`` is told. ``remove(sock)``
     drops a socket: call it before closing the socket, so that its descriptor number is not
@@ -28,7 +30,7 @@ class ReceiveThread:
     def __init__(self, name, on_error):
         self._on_error = on_error
         self._selector = selectors.DefaultSelector()
-        self._changes = []                      # ('add', sock, reader) / ('remove', sock)
+        self._changes = []              # ('add', sock, reader, first) / ('remove', sock)
         self._lock = threading.Lock()
         self._wake_read, self._wake_write = socket.socketpair()
         self._wake_read.setblocking(False)
@@ -37,8 +39,8 @@ class ReceiveThread:
         self._thread = threading.Thread(target=self._run, name=name, daemon=True)
         self._thread.start()
 
-    def add(self, sock, reader):
-        self._change(('add', sock, reader))
+    def add(self, sock, reader, first=None):
+        self._change(('add', sock, reader, first))
 
     def remove(self, sock):
         self._change(('remove', sock))
@@ -57,11 +59,14 @@ class ReceiveThread:
             changes, self._changes = self._changes, []
         for change in changes:
             if change[0] == 'add':
-                _, sock, reader = change
+                _, sock, reader, first = change
                 try:
                     self._selector.register(sock, selectors.EVENT_READ, reader)
                 except (KeyError, ValueError, OSError) as err:
                     self._on_error(reader, err)    # closed before it could be waited on
+                    continue
+                if first is not None:
+                    self._call(first, sock)
             else:
                 with contextlib.suppress(KeyError, ValueError):  # never added, or dropped
                     self._selector.unregister(change[1])
@@ -69,15 +74,18 @@ class ReceiveThread:
     def _run(self):
         while True:
             for key, _ in self._selector.select():
-                reader = key.data
-                if reader is None:
+                if key.data is None:
                     self._apply_changes()
-                    continue
-                try:
-                    keep = reader()
-                except Exception as err:            # a reader's bug must not stop the others
-                    keep = False
-                    self._on_error(reader, err)
-                if not keep:
-                    with contextlib.suppress(KeyError, ValueError):
-                        self._selector.unregister(key.fileobj)
+                else:
+                    self._call(key.data, key.fileobj)
+
+    def _call(self, reader, sock):
+        """reader() for sock; sock no longer waited on if it returns False or raises."""
+        try:
+            keep = reader()
+        except Exception as err:                    # a reader's bug must not stop the others
+            keep = False
+            self._on_error(reader, err)
+        if not keep:
+            with contextlib.suppress(KeyError, ValueError):
+                self._selector.unregister(sock)

@@ -170,11 +170,11 @@ def _share_connection(receiver, conn, receive_cb):
         close()
 
     conn.close = forget_then_close
-    read = functools.partial(_read_connection, conn, receive_cb)
-    if not _deliver(conn, receive_cb):      # the handshake's read may have taken messages
-        return _hand_back(conn, receive_cb)
     conn.socket.setblocking(False)
-    receiver.add(conn.socket, read)
+    # The handshake's read may have taken messages (a latched one): delivered first, in the
+    # receiving thread too, so that no two callbacks of the node's connections overlap.
+    receiver.add(conn.socket, functools.partial(_read_connection, conn, receive_cb),
+                 first=functools.partial(_deliver_or_hand_back, conn, receive_cb))
     return None
 
 
@@ -193,6 +193,11 @@ def _read_connection(conn, receive_cb):
         return False
     conn.stat_bytes += len(data)
     conn.read_buff.write(data)
+    return _deliver_or_hand_back(conn, receive_cb)
+
+
+def _deliver_or_hand_back(conn, receive_cb):
+    """The buffer's whole messages delivered: True; or the connection handed back: False."""
     if _deliver(conn, receive_cb):
         return True
     _hand_back(conn, receive_cb)

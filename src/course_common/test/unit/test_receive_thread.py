@@ -137,3 +137,44 @@ def test_peer_closing_wakes_the_reader(pairs):
     a.close()
     wait_for(lambda: reader.calls >= 1, DEADLINE_S, 'the end of the stream read')
     assert reader.received() == b''
+
+
+class First:
+    """A `first` call: records its thread and what it saw; keeps or drops the socket."""
+
+    def __init__(self, keep=True):
+        self.keep = keep
+        self.threads = []
+
+    def __call__(self):
+        self.threads.append(threading.current_thread().name)
+        return self.keep
+
+
+def test_first_runs_once_in_the_thread_before_the_reader(pairs):
+    receiver = ReceiveThread('receiver_first', lambda r, e: None)
+    a, b = pairs()
+    reader = Reader(b)
+    first = First()
+    receiver.add(b, reader, first)
+    wait_for(lambda: first.threads, DEADLINE_S, 'the first call, with nothing to read')
+    assert reader.calls == 0                # first runs without bytes on the socket
+    a.sendall(b'later')
+    wait_for(lambda: reader.received() == b'later', DEADLINE_S, 'the later bytes')
+    assert first.threads == ['receiver_first'] and reader.threads == {'receiver_first'}
+
+
+def test_first_returning_false_drops_the_socket(pairs):
+    receiver = ReceiveThread('receiver_first_drop', lambda r, e: None)
+    a, b = pairs()
+    reader = Reader(b)
+    first = First(keep=False)
+    receiver.add(b, reader, first)
+    a.sendall(b'unread')
+    wait_for(lambda: first.threads, DEADLINE_S, 'the first call')
+    other_a, other_b = pairs()
+    marker = Reader(other_b)
+    receiver.add(other_b, marker)
+    other_a.sendall(b'x')
+    wait_for(lambda: marker.received() == b'x', DEADLINE_S, 'a later socket served')
+    assert reader.calls == 0 and b.recv(10) == b'unread'

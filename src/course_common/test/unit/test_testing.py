@@ -25,7 +25,7 @@ from genpy import Time
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock, Log
 
-from course_common import testing
+from course_common import ports, testing
 
 COUNT = re.compile(r'^hello world (\d+)$')
 TIME = re.compile(r'^hello world (\d+\.\d+)$')
@@ -132,11 +132,32 @@ def test_check_refused_fails_the_subtest_of_each_bad_case(script, failed):
     assert failed_argvs == expected, result.failures
 
 
-def test_free_port_can_be_bound():
-    port = free_port()
-    assert 1024 <= port <= 65535
-    with socket.socket() as sock:
-        sock.bind(('localhost', port))  # free right now: nothing else took it
+def test_free_port_can_be_bound_and_is_below_the_ephemeral_range():
+    low = ports._ephemeral_low()
+    for _ in range(20):
+        port = free_port()
+        assert ports.LOWEST_PORT <= port < low and port != ports.MASTER_PORT
+        with socket.socket() as sock:
+            sock.bind(('', port))  # free right now, on every address: nothing else took it
+
+
+def test_free_port_passes_over_a_taken_port_and_the_default_masters(monkeypatch):
+    with socket.socket() as taken:
+        taken.bind(('', 0))
+        taken.listen()
+        free = free_port()              # a real pick: bindable now
+        proposals = iter([taken.getsockname()[1], ports.MASTER_PORT, free])
+        monkeypatch.setattr(ports.random, 'randrange', lambda lo, hi: next(proposals))
+        assert free_port() == free
+
+
+def test_ephemeral_low_reads_the_kernels_range_or_falls_back(tmp_path):
+    good, bad = tmp_path / 'range', tmp_path / 'bad'
+    good.write_text('40000\t60999\n')
+    bad.write_text('')
+    assert ports._ephemeral_low(str(good)) == 40000
+    assert ports._ephemeral_low(str(bad)) == 32768
+    assert ports._ephemeral_low(str(tmp_path / 'missing')) == 32768
 
 
 @pytest.mark.parametrize('lines, number', [

@@ -10,6 +10,7 @@ import socket
 import pytest
 from course_common.ports import free_port
 from course_common.processes import descendants, pid_running, process_table
+from course_common.waiting import WaitError
 from course_desktop.testing import (
     EVENT_DEADLINE_S,
     Browser,
@@ -121,14 +122,19 @@ def test_the_stage_lesson_shows_in_the_page_and_its_robots_move_after_go(workspa
 
 
 def test_turtlesim_and_its_teleop_terminal(workspace, browser):
-    with desktop(workspace, env=private_master()) as d:
+    master = private_master()
+    with desktop(workspace, env=master) as d:
         browser.open(d.url()).wait_connected()
         # roscore on the port of the desktop's ROS_MASTER_URI (11311 in a container).
         browser.type('roscore -p "${ROS_MASTER_URI##*:}"\n')
         browser.open_terminal()
         browser.type('rosrun turtlesim turtlesim_node\n')
-        wait_for(lambda: colour_spot(browser.screenshot(), TURTLESIM_BLUE, 12)[0] > 100000,
-                 EVENT_DEADLINE_S, "turtlesim's window in the page")
+        try:
+            wait_for(lambda: _turtlesim_blue(browser) > 100000, EVENT_DEADLINE_S,
+                     "turtlesim's window in the page")
+        except WaitError as err:    # say whether roscore came up: turtlesim waits for it
+            raise WaitError('%s (%d of its blue pixels show; %s)' % (
+                err, _turtlesim_blue(browser), _master_state(master))) from None
         browser.open_terminal()
         browser.type('rosrun turtlesim turtle_teleop_key\n')
         wait_for(lambda: _teleop_drew(browser), EVENT_DEADLINE_S,
@@ -141,6 +147,23 @@ def test_rviz_shows_its_3d_view(workspace, browser):
         browser.type('roscore -p "${ROS_MASTER_URI##*:}" > /dev/null & rviz\n')
         wait_for(lambda: colour_spot(browser.screenshot(), RVIZ_BACKGROUND, 4)[0] > 100000,
                  EVENT_DEADLINE_S, "rviz's 3D view (drawn by OpenGL on the desktop's X server)")
+
+
+def _turtlesim_blue(browser):
+    return colour_spot(browser.screenshot(), TURTLESIM_BLUE, 12)[0]
+
+
+def _master_state(env):
+    """Whether the desktop's master answers (from this machine: not the container's)."""
+    uri = env.get('ROS_MASTER_URI')
+    if uri is None:
+        return "the container's master is not reachable from here"
+    import rosgraph
+    try:
+        rosgraph.Master('/desktop_test', master_uri=uri).getPid()
+    except (OSError, rosgraph.MasterException) as err:
+        return 'no master answers at %s: %s' % (uri, err)
+    return 'its master answers at %s' % uri
 
 
 def _teleop_drew(browser):
