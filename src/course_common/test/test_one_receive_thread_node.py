@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """one_receive_thread() under a real master: what the subscriber receives is what rospy's own
 threads would deliver (every message, in order per connection, with its connection header,
-the latched one, a restarted publisher's), from one thread instead of one per connection."""
+the latched one, a restarted publisher's), from one thread instead of one per connection;
+deliver_bodies(): the messages' bodies instead, and a body refused closes the connection."""
+import io
 import os
 import signal
 import sys
@@ -11,7 +13,12 @@ import unittest
 import rospy
 import rostest
 from course_common.publishers import unqueued_publisher
-from course_common.rospy_internals import caller_id, has_subscribers, one_receive_thread
+from course_common.rospy_internals import (
+    caller_id,
+    deliver_bodies,
+    has_subscribers,
+    one_receive_thread,
+)
 from course_common.testing import spawn, wait_for
 from std_msgs.msg import String
 
@@ -57,6 +64,12 @@ def receiving_threads():
     return [t.name for t in threading.enumerate() if t.name.startswith('/shared/')]
 
 
+def _serialised(msg):
+    buff = io.BytesIO()
+    msg.serialize(buff)
+    return buff.getvalue()
+
+
 class OneReceiveThreadTest(unittest.TestCase):
 
     def test_many_topics_in_order_from_one_thread(self):
@@ -90,6 +103,33 @@ class OneReceiveThreadTest(unittest.TestCase):
         wait_for(box.items, DEADLINE_S, 'the latched message')
         self.assertEqual([m.data for m in box.items()], ['kept'])
         self.assertEqual(box.threads, {RECEIVE_THREAD})
+        box.sub.unregister()
+        pub.unregister()
+
+    def test_bodies_delivered_in_order_and_a_refused_one_closes_the_connection(self):
+        pub = unqueued_publisher('/shared/bodies', String)
+        box = Inbox('/shared/bodies')   # the callback: for a connection handed back
+        seen = []
+
+        def take(bodies, _conn):
+            if any(b.endswith(b'bad') for b in bodies):
+                raise ValueError('not a message this handler takes')
+            seen.append((threading.current_thread().name, [bytes(b) for b in bodies]))
+        deliver_bodies(box.sub, take)
+        wait_for(lambda: has_subscribers(pub), DEADLINE_S, 'the subscriber connected')
+        for k in range(MESSAGES):
+            pub.publish(String('body %d' % k))
+        wait_for(lambda: sum(len(b) for _, b in seen) >= MESSAGES, DEADLINE_S,
+                 'every body')
+        bodies = [b for _, batch in seen for b in batch]
+        self.assertEqual(bodies, [_serialised(String('body %d' % k)) for k in range(MESSAGES)])
+        self.assertEqual({name for name, _ in seen}, {RECEIVE_THREAD})
+        self.assertEqual(box.items(), [])       # no message object made
+        pub.publish(String('bad'))
+        # refused: the socket closed, rospy's own loop reconnects and calls the callback
+        wait_for(lambda: (pub.publish(String('after')), box.items())[1], DEADLINE_S,
+                 'a message through the reconnected connection')
+        self.assertEqual(box.items()[0].data, 'after')
         box.sub.unregister()
         pub.unregister()
 

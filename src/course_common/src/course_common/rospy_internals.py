@@ -27,7 +27,7 @@ from rospy.impl.paramserver import get_param_server_cache
 from rospy.impl.registration import get_topic_manager
 
 from course_common.receive_thread import ReceiveThread
-from course_common.tcpros_frames import FrameStream
+from course_common.tcpros_frames import FrameStream, split_frames
 
 #: The parameter whose local cache entry cheap_rosout() and cache_rosout_param() seed.
 ROSOUT_TOPICS_PARAM = '/rosout_disable_topics_generation'
@@ -204,20 +204,34 @@ def _deliver_or_hand_back(conn, receive_cb):
     return False
 
 
+def deliver_bodies(sub, handler):
+    """With one_receive_thread(): sub's messages go to ``handler(bodies, conn)`` as their
+    serialised bodies (bytes, oldest first; of those read at once, the last queue_size, as
+    rospy keeps) instead of being deserialised for the topic's callbacks.
+
+    For a message of fixed layout (a Twist is 6 float64) a struct.unpack is a fraction of
+    rospy's message objects and callback loop: stageros on a swarm receives a cmd_vel per
+    robot and step. The handler raises ValueError for a body that is no such message: the
+    connection is then closed, as for a message that does not deserialise. A latched
+    connection, or one handed back to rospy's own loop, still goes to the callbacks: give
+    the subscriber its callback too. Replaces every callback of the topic in this process.
+    """
+    sub.impl.course_body_handler = handler
+
+
 def _deliver(conn, receive_cb):
     """The whole messages in conn's buffer to the subscription; False if they do not
     deserialise (the socket is then closed, as rospy's receive_once does)."""
     if conn.read_buff.tell() < 4:
         return True
+    handler = getattr(getattr(receive_cb, '__self__', None), 'course_body_handler', None)
+    if handler is not None and not conn.is_latched:
+        return _deliver_bodies(conn, handler)
     msgs = []
     try:
         conn.protocol.read_messages(conn.read_buff, msgs, conn.socket)
     except DeserializationError:
-        rospy.core.rospyerr(traceback.format_exc())
-        with contextlib.suppress(OSError):
-            conn.socket.close()
-        conn.socket = None      # rospy's loop reconnects a connection without a socket
-        return False
+        return _refuse(conn, traceback.format_exc())
     if not msgs:
         return True
     conn.stat_num_msg += len(msgs)
@@ -228,6 +242,38 @@ def _deliver(conn, receive_cb):
     if not conn.done and not rospy.core.is_shutdown():
         receive_cb(msgs, conn)
     return True
+
+
+def _deliver_bodies(conn, handler):
+    """_deliver for a deliver_bodies() subscription."""
+    buff = conn.read_buff
+    data = buff.getvalue()[:buff.tell()]
+    bodies, used = split_frames(data)
+    buff.seek(0)
+    buff.truncate(0)
+    buff.write(data[used:])
+    if not bodies:
+        return True
+    if conn.protocol.queue_size is not None:
+        bodies = bodies[-conn.protocol.queue_size:]
+    conn.stat_num_msg += len(bodies)
+    if conn.done or rospy.core.is_shutdown():
+        return True
+    try:
+        handler(bodies, conn)
+    except ValueError as err:
+        return _refuse(conn, 'cannot deserialize a message on %s: %s' % (conn.name, err))
+    return True
+
+
+def _refuse(conn, why):
+    """A message that does not deserialise: logged, the socket closed (rospy's loop then
+    reconnects a connection without a socket, as its receive_once does). False."""
+    rospy.core.rospyerr(why)
+    with contextlib.suppress(OSError):
+        conn.socket.close()
+    conn.socket = None
+    return False
 
 
 def _hand_back(conn, receive_cb):

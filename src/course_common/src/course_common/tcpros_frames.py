@@ -10,6 +10,9 @@ of (a 1081-beam scan is 8.7 kB) is finished before any later frame is sent, so t
 stream stays aligned and the subscriber, once it reads again, receives whole messages.
 """
 import socket
+import struct
+
+_U32 = struct.Struct('<I')
 
 
 class FrameStream:
@@ -54,3 +57,17 @@ class FrameStream:
             return sock.send(data, socket.MSG_DONTWAIT)
         except (BlockingIOError, InterruptedError):
             return 0
+
+
+def split_frames(data):
+    """(bodies, used): the bodies of the whole frames at the start of ``data`` (each frame a
+    little-endian uint32 length, then that many bytes), and how many bytes they took."""
+    bodies = []
+    pos, end = 0, len(data)
+    while end - pos >= 4:
+        (size,) = _U32.unpack_from(data, pos)
+        if end - pos - 4 < size:
+            break
+        bodies.append(data[pos + 4:pos + 4 + size])
+        pos += 4 + size
+    return bodies, pos

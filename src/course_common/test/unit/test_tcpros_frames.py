@@ -5,7 +5,7 @@ import threading
 import time
 
 import pytest
-from course_common.tcpros_frames import FrameStream
+from course_common.tcpros_frames import FrameStream, split_frames
 
 FRAME = struct.Struct('<II')  # a sequence number and a marker, 8 bytes like a tiny message
 MARKER = 0xC0FFEE
@@ -142,3 +142,14 @@ def test_a_broken_connection_raises_the_socket_error(tcp_pair):
     with pytest.raises(OSError):
         for i in range(1000):
             stream.send(writer, FRAME.pack(i, MARKER))
+
+
+@pytest.mark.parametrize('data, bodies, used', [
+    (b'', [], 0),
+    (b'\x02\x00', [], 0),                                     # a length cut short
+    (b'\x02\x00\x00\x00ab', [b'ab'], 6),
+    (b'\x02\x00\x00\x00ab\x00\x00\x00\x00\x03\x00\x00\x00xy', [b'ab', b''], 10),  # 3rd cut
+    (b'\x01\x00\x00\x00a\x01\x00\x00\x00b', [b'a', b'b'], 10),
+])
+def test_split_frames_takes_the_whole_frames_only(data, bodies, used):
+    assert split_frames(data) == (bodies, used)

@@ -4,7 +4,7 @@ import math
 
 import pytest
 from course_common.arena import WORLD_SIZE_M, arena_outline
-from course_common.trail import Trail
+from course_common.trail import Trail, Trails
 
 
 def test_arena_outline_is_the_closed_world_square():
@@ -55,3 +55,15 @@ def test_trail_refuses_non_finite_points(x, y):
     with pytest.raises(ValueError, match='trail point'):
         trail.add(x, y)
     assert trail.points() == []
+
+
+def test_trails_of_many_robots_at_once_keep_each_robots_order_past_the_ring():
+    trails = Trails(3, 4, 0.5)
+    for k in range(10):
+        appended = trails.add_all([[k, 0.0], [0.0, k * 0.25], [k, k]])
+        assert appended.tolist() == [True, k % 2 == 0, True]
+    assert trails.get(0).tolist() == [[6, 0], [7, 0], [8, 0], [9, 0]]     # the last 4
+    assert trails.get(1).tolist() == [[0, 0.5], [0, 1.0], [0, 1.5], [0, 2.0]]
+    assert trails.held(2) == 4
+    trails.clear()
+    assert trails.get(2).shape == (0, 2) and trails.add_all([[1.0, 1.0]], [2]).tolist() == [True]

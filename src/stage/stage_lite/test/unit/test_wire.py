@@ -1,8 +1,10 @@
 """The hand-packed frames deserialise, with genpy's own classes, to what stageros sends."""
+import io
 import math
 
 import numpy as np
 import pytest
+from geometry_msgs.msg import Twist, Vector3
 from nav_msgs.msg import OccupancyGrid, Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
@@ -113,3 +115,12 @@ def test_occupancy_grid_rows_start_at_the_lowest_y():
 def test_map_grid_refuses_a_bad_resolution():
     with pytest.raises(ValueError):
         map_msg.map_grid((np.zeros((2, 2), bool), 0, 0, 0.02), 0.0)
+
+
+def test_twist_command_reads_a_serialised_twist_and_refuses_other_sizes():
+    buff = io.BytesIO()
+    Twist(linear=Vector3(0.5, -0.25, 9.0), angular=Vector3(7.0, 8.0, -1.5)).serialize(buff)
+    body = buff.getvalue()      # what a cmd_vel frame carries after its length
+    assert wire.twist_command(body) == (0.5, -0.25, -1.5)
+    with pytest.raises(ValueError, match='a Twist is 48 bytes, not 47'):
+        wire.twist_command(body[:47])

@@ -7,7 +7,7 @@ import pytest
 from course_common.save_image import write_png
 from stage_lite.view import world_picture as picture
 from stage_lite.view.camera import Camera
-from stage_lite.view.world_picture import DrawOptions, FloorPlan, RobotView, ScanView, Trails
+from stage_lite.view.world_picture import DrawOptions, FloorPlan, RobotView, ScanView, trails
 
 TOL = 1e-9  # m / px: plain affine maps
 ALPHA = round(picture.FAN_ALPHA * 255) / 255    # Pillow blends in whole steps of 1/255
@@ -190,10 +190,13 @@ def test_the_floor_image_saves_as_png_in_new_directories(tmp_path):
 
 
 def test_trails_skip_tiny_steps_and_cap_their_length():
-    trails = Trails(2, min_step_m=0.1, max_points=3)
+    paths = trails(3, min_step_m=0.1, max_points=3)
     for x in (0.0, 0.05, 0.1, 0.25, 0.4, 0.55):
-        trails.add(0, x, 0.0)
-    assert trails.get(0)[:, 0].tolist() == pytest.approx([0.25, 0.4, 0.55], abs=TOL)
-    assert trails.get(1).shape == (0, 2)
-    trails.clear()
-    assert trails.get(0).shape == (0, 2)
+        paths.add_all([[x, 0.0], [0.0, x], [math.nan, x]])    # every robot at once
+    assert paths.get(0)[:, 0].tolist() == pytest.approx([0.25, 0.4, 0.55], abs=TOL)
+    assert paths.get(1)[:, 1].tolist() == pytest.approx([0.25, 0.4, 0.55], abs=TOL)
+    assert paths.get(2).shape == (0, 2)                      # never a finite position
+    paths.add_all([[9.0, 9.0]], [2])                           # one robot alone
+    assert paths.get(2).tolist() == [[9.0, 9.0]] and len(paths.get(0)) == 3
+    paths.clear()
+    assert paths.get(0).shape == (0, 2)

@@ -96,6 +96,8 @@ class World(RangerCasts, RobotByRobot):
         self.state = RobotArrays(len(self.robots))
         for r in self.robots:
             r.bind(self.state)
+        # robots carried by another model: their rows are poses in the carrier's frame
+        self._carried_robots = [r.index for r in self.robots if r.model.parent is not None]
         self.space = loaded.space
         self.warnings = loaded.warnings
         self.stageros_warnings = loaded.stageros_warnings
@@ -172,6 +174,13 @@ class World(RangerCasts, RobotByRobot):
             r.goal = (0.0, 0.0, 0.0, 0.0)
             r.control_mode = 'velocity'
             r.velocity = (0.0, 0.0, 0.0, 0.0)
+
+    def robot_poses(self):
+        """Every robot's world pose (x, y, yaw), as Robot.pose gives it: an (n, 3) array."""
+        poses = self.state.pose[:, [0, 1, 3]]
+        for i in self._carried_robots:
+            poses[i] = self.robots[i].pose
+        return poses
 
     def global_poses(self, models, body=False, at=None):
         """Model.global_pose (body_pose with body) of each model, an (n, 4) array: carried

@@ -10,7 +10,7 @@ import time
 import rosgraph
 import rospy
 from course_common.publishers import unqueued_publisher
-from course_common.rospy_internals import has_subscribers, write_frame
+from course_common.rospy_internals import deliver_bodies, has_subscribers, write_frame
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
@@ -19,15 +19,16 @@ from std_msgs.msg import Bool
 from tf2_msgs.msg import TFMessage
 
 from . import wire
+from .robot_frames import RobotFrames
 
 #: stageros's queue sizes (advertise<...>(name, 10), subscribe(cmd_vel, 10)).
 QUEUE_SIZE = 10
 
 
 class RobotOutput:
-    """One robot's publishers, its cmd_vel subscriber and its packed frame ids."""
+    """One robot's publishers and its cmd_vel subscriber."""
 
-    def __init__(self, index, names, robot, params, on_cmd_vel):
+    def __init__(self, index, names, params, on_cmd_vel, on_cmd_vel_bodies):
         self.index = index
         self.names = names
         self.odom_pub = unqueued_publisher(names.odom, Odometry)
@@ -36,54 +37,10 @@ class RobotOutput:
         self.stall_pub = (rospy.Publisher(names.stall, Bool, queue_size=1, latch=True)
                           if params.publish_stall else None)
         self.last_stall = None
-        s = wire.string_bytes
-        self.odom_frame = s(names.odom_frame)
-        self.footprint_frame = s(names.footprint_frame)
-        self.base_frame = s(names.base_frame)
-        self.laser_frames = [s(f) for f in names.laser_frames]
-        # stageros leaves child_frame_id empty; ~odom_child_frame fills it (stage_ros PR #52).
-        self.child_frame = s(names.footprint_frame if params.odom_child_frame else '')
-        self.empty = s('')
-        self.templates = [wire.ScanTemplate(frame, r.angle_min, r.angle_increment, r.samples,
-                                            r.range_min, r.range_max)
-                          for frame, r in zip(names.laser_frames, robot.rangers, strict=True)]
         # Subscribed last: the callback may run at once.
         self.cmd_sub = rospy.Subscriber(names.cmd_vel, Twist, on_cmd_vel, callback_args=index,
                                         queue_size=QUEUE_SIZE)
-
-    def collect(self, robot, seq, secs, nsecs, out):
-        """Append (publisher, frame) for every subscribed topic of this robot to out.
-
-        seq: the header's seq, the number of steps published before this one (roscpp counts
-        a publisher's messages whether anybody listens or not, so stageros's seq is that).
-        """
-        if has_subscribers(self.odom_pub):
-            out.append((self.odom_pub, wire.odometry_frame(
-                seq, secs, nsecs, self.odom_frame, self.child_frame,
-                robot.odom_pose, robot.command)))
-        if has_subscribers(self.truth_pub):
-            out.append((self.truth_pub, wire.odometry_frame(
-                seq, secs, nsecs, self.odom_frame, self.empty,
-                robot.pose, robot.truth_twist, wire.transform_quaternion)))
-        for pub, template, ranger in zip(self.scan_pubs, self.templates, robot.rangers,
-                                         strict=True):
-            # stageros publishes a ranger once it has ranges: after its first update
-            if ranger.has_data and has_subscribers(pub):
-                out.append((pub, template.frame(seq, secs, nsecs, ranger.ranges,
-                                                ranger.intensities)))
-
-    def transforms(self, robot, secs, nsecs):
-        """odom -> base_footprint (odometry pose), -> base_link (identity), -> each laser."""
-        x, y, yaw = robot.odom_pose
-        packed = [wire.transform_bytes(secs, nsecs, self.odom_frame, self.footprint_frame,
-                                       x, y, 0.0, yaw),
-                  wire.transform_bytes(secs, nsecs, self.footprint_frame, self.base_frame,
-                                       0.0, 0.0, 0.0, 0.0)]
-        for frame, ranger in zip(self.laser_frames, robot.rangers, strict=True):
-            lx, ly, lz, lyaw = ranger.pose
-            packed.append(wire.transform_bytes(secs, nsecs, self.base_frame, frame,
-                                               lx, ly, lz, lyaw))
-        return packed
+        deliver_bodies(self.cmd_sub, lambda bodies, _conn: on_cmd_vel_bodies(bodies, index))
 
     def stall_changed(self, robot):
         """The stall value to publish if it changed (None otherwise or when switched off)."""
@@ -96,18 +53,33 @@ class RobotOutput:
 class StepOutput:
     """Every robot's output plus the global /clock and /tf."""
 
-    def __init__(self, world, names, params, on_cmd_vel, cameras=None):
+    def __init__(self, world, names, params, on_cmd_vel, on_cmd_vel_bodies, cameras=None):
+        """on_cmd_vel(msg, index) and on_cmd_vel_bodies(bodies, index): a robot's cmd_vel
+        as messages or as their bodies (rospy_internals.deliver_bodies)."""
         self.cameras = cameras      # camera_publish.CameraOutputs, or None
         self.clock_pub = unqueued_publisher('/clock', Clock)
         self.tf_pub = unqueued_publisher('/tf', TFMessage)
-        self.robots = [RobotOutput(i, n, r, params, on_cmd_vel)
-                       for i, (n, r) in enumerate(zip(names, world.robots, strict=True))]
+        self.packed = RobotFrames(world, names, params.odom_child_frame)
+        self.robots = [RobotOutput(i, n, params, on_cmd_vel, on_cmd_vel_bodies)
+                       for i, n in enumerate(names)]
+        # (publisher, its frame, the RangerView whose data it waits for, or None) in the
+        # order stageros publishes: each robot's odom, ground truth, then its scans
+        self._robot_frames = []
+        for i, output in enumerate(self.robots):
+            self._robot_frames += [(output.odom_pub, self.packed.odom[i], None),
+                                   (output.truth_pub, self.packed.truth[i], None)]
+            self._robot_frames += list(zip(output.scan_pubs, self.packed.scans[i],
+                                           self.packed.views[i], strict=True))
         self.publish_stall = params.publish_stall
-        self.steps_published = 0  # the headers' seq (see RobotOutput.collect)
-        # Every robot's per-step publishers: one any() over them per step lets a step with
-        # no robot topic subscribed (the flat-out benchmark) skip the loop over the robots.
-        self._robot_pubs = [pub for output in self.robots
-                            for pub in (output.odom_pub, output.truth_pub, *output.scan_pubs)]
+        # The headers' seq: the steps published before this one (roscpp counts a
+        # publisher's messages whether anybody listens or not, so stageros's seq is that).
+        self.steps_published = 0
+        # Each kind's publishers: a kind nobody subscribes to is not packed, and a step with
+        # no robot topic subscribed (the flat-out benchmark) skips the loop over the robots.
+        self._odom_pubs = [output.odom_pub for output in self.robots]
+        self._truth_pubs = [output.truth_pub for output in self.robots]
+        self._scan_pubs = [pub for output in self.robots for pub in output.scan_pubs]
+        self._robot_pubs = self._odom_pubs + self._truth_pubs + self._scan_pubs
 
     def wait_for_waiting_subscribers(self, timeout_s, poll_s=0.002):
         """Wait (at most timeout_s) until the subscribers that the master already lists for
@@ -139,22 +111,30 @@ class StepOutput:
         self.steps_published += 1
         frames = []
         stalls = []
-        if any(map(has_subscribers, self._robot_pubs)):
-            for output, robot in zip(self.robots, world.robots, strict=True):
-                output.collect(robot, seq, secs, nsecs, frames)
+        packed = self.packed
+        kinds = [any(map(has_subscribers, pubs))
+                 for pubs in (self._odom_pubs, self._truth_pubs, self._scan_pubs)]
+        with_tf = has_subscribers(self.tf_pub)
+        packed.fill(seq, secs, nsecs, *kinds, tf=with_tf)
+        if any(kinds):
+            for pub, frame, view in self._robot_frames:
+                # stageros publishes a ranger once it has ranges: after its first update
+                if pub.impl.connections and (view is None or view.has_data):
+                    frames.append((pub, frame))
         camera_tf = self.cameras.collect(world, secs, nsecs, frames) if self.cameras else []
         if self.publish_stall:
             for output, robot in zip(self.robots, world.robots, strict=True):
                 stall = output.stall_changed(robot)
                 if stall is not None:
                     stalls.append((output.stall_pub, stall))
-        if has_subscribers(self.tf_pub):
+        if with_tf:
             # One message for every robot's transforms (stageros sends one per transform).
-            packed = []
-            for output, robot in zip(self.robots, world.robots, strict=True):
-                packed.extend(output.transforms(robot, secs, nsecs))
-            packed.extend(camera_tf)
-            frames.append((self.tf_pub, wire.tf_frame(packed)))
+            tf = packed.tf
+            if camera_tf:
+                # the robots' transforms (after the frame's length and count), the cameras'
+                tf = wire.tf_frame([bytes(tf[8:]), *camera_tf],
+                                   count=packed.tf_count + len(camera_tf))
+            frames.append((self.tf_pub, tf))
         if has_subscribers(self.clock_pub):
             frames.append((self.clock_pub, wire.clock_frame(secs, nsecs)))
         return frames, stalls

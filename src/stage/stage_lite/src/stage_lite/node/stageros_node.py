@@ -64,6 +64,7 @@ from course_common.startup import init_node
 from ..view.status import RateMeter, clock_string
 from ..view.world_picture import render
 from ..view.world_view import WorldView
+from . import wire
 from .camera_publish import CameraOutputs
 from .names import all_robot_names, shared_namespaces
 from .pacing import SimClock, Watchdog, world_speedup
@@ -93,7 +94,8 @@ class StageNode:
             rospy.logwarn(line)
         self.cameras = CameraOutputs(world, self.names, args.use_model_names,
                                      params.tf2_frames, params.is_depth_canonical)
-        self.output = StepOutput(world, self.names, params, self.on_cmd_vel, self.cameras)
+        self.output = StepOutput(world, self.names, params, self.on_cmd_vel,
+                                 self.on_cmd_vel_bodies, self.cameras)
         self.view = WorldView(world)
         self.rate = RateMeter()           # the real-time factor of the status line
         self.loop = StepLoop(self.step, world.interval_sim_s, node_speedup(world, params),
@@ -101,7 +103,15 @@ class StageNode:
         self.services = StageServices(world, params, self.names, self.reset, self.picture)
 
     def on_cmd_vel(self, msg, index):
-        vx, vy, wz = msg.linear.x, msg.linear.y, msg.angular.z
+        self.command(index, msg.linear.x, msg.linear.y, msg.angular.z)
+
+    def on_cmd_vel_bodies(self, bodies, index):
+        """cmd_vel's messages as bodies (rospy_internals.deliver_bodies), oldest first."""
+        for body in bodies:
+            self.command(index, *wire.twist_command(body))
+
+    def command(self, index, vx, vy, wz):
+        """stageros's cmdvelReceived: the robot's speed, and the watchdog told."""
         try:
             with self.lock:
                 self.world.set_command(index, vx, vy, wz)

@@ -15,6 +15,8 @@ import struct
 
 import numpy as np
 
+from ..model.jit import njit
+
 _U32 = struct.Struct('<I')
 HEADER_STAMP = struct.Struct('<III')  # a Header's seq, secs, nsecs
 _CLOCK = struct.Struct('<III')        # length 8, secs, nsecs
@@ -24,6 +26,20 @@ _SCAN_FIELDS = struct.Struct('<7f')
 _TRANSFORM = struct.Struct('<7d')
 #: Odometry's two covariance matrices: stageros leaves them all zero.
 _ZERO_COVARIANCE = bytes(36 * 8)
+
+
+def twist_command(body):
+    """(linear.x, linear.y, angular.z) of a geometry_msgs/Twist's serialised body (6
+    float64: linear x, y, z, angular x, y, z); ValueError if it is not 48 bytes."""
+    if len(body) != _TWIST.size:
+        raise ValueError('a Twist is %d bytes, not %d' % (_TWIST.size, len(body)))
+    vx, vy, _, _, _, wz = _TWIST.unpack(body)
+    return vx, vy, wz
+
+
+def uint32_bytes(n):
+    """A ROS uint32 (an array's or a string's length)."""
+    return _U32.pack(n)
 
 
 def string_bytes(text):
@@ -136,6 +152,186 @@ def transform_bytes(secs, nsecs, parent, child, x, y, z, yaw):
                      _TRANSFORM.pack(x, y, z, *transform_quaternion(yaw))))
 
 
-def tf_frame(transforms):
-    """tf2_msgs/TFMessage of already packed transform_bytes()."""
-    return _frame((_U32.pack(len(transforms)), *transforms))
+def tf_frame(transforms, count=None):
+    """tf2_msgs/TFMessage of already packed transform_bytes() (count: how many transforms
+    they hold, if not one each)."""
+    return _frame((_U32.pack(len(transforms) if count is None else count), *transforms))
+
+
+# ---- every robot's frames of a step at once ----------------------------------------------
+# A swarm's stageros packs N odometries, N ground truths, N scans and 2..3 N transforms a
+# step: one call per message was most of its step. A FrameBatch keeps all frames of a kind
+# in one buffer, their constant bytes (frame ids, covariances, scan geometry) written once,
+# and writes each changing field for every frame in one kernel call.
+
+class FrameBatch:
+    """Frames in one buffer. Each frame is a list of parts: bytes (constant) or
+    (field name, byte count) (written each step with write()/fill()). ``frames[i]`` is
+    frame i (its uint32 length first) as a memoryview of the buffer: send it before the
+    next write."""
+
+    def __init__(self, frames_parts):
+        starts = {}
+        chunks = []
+        offset = 0
+        self.frames = []
+        spans = []
+        for parts in frames_parts:
+            body = sum(len(p) if isinstance(p, bytes) else p[1] for p in parts)
+            chunks.append(_U32.pack(body))
+            spans.append((offset, offset + 4 + body))
+            offset += 4
+            for part in parts:
+                if isinstance(part, bytes):
+                    chunks.append(part)
+                    offset += len(part)
+                else:
+                    name, size = part
+                    starts.setdefault(name, []).append((offset, size))
+                    chunks.append(bytes(size))
+                    offset += size
+        self.buffer = np.frombuffer(bytearray(b''.join(chunks)), np.uint8)
+        view = memoryview(self.buffer)
+        self.frames = [view[a:b] for a, b in spans]
+        self._fields = {name: (np.array([s for s, _ in places], np.int64),
+                               np.array([n for _, n in places], np.int64),
+                               sum(n for _, n in places))
+                        for name, places in starts.items()}
+
+    def write(self, name, values):
+        """Field `name` of every frame, in order, from values' bytes (an array whose bytes
+        are those of the fields in a row: e.g. (n, 7) float64 for n poses)."""
+        starts, sizes, total = self._fields[name]
+        data = np.ascontiguousarray(values).view(np.uint8).reshape(-1)
+        if data.size != total:
+            raise ValueError('field %s takes %d bytes, not %d' % (name, total, data.size))
+        _scatter(self.buffer, starts, sizes, data)
+
+    def fill(self, name, value):
+        """Field `name` of every frame := the same bytes `value`."""
+        starts, sizes, _ = self._fields[name]
+        _fill(self.buffer, starts, sizes, np.frombuffer(value, np.uint8))
+
+
+@njit(cache=True)
+def _scatter(buffer, starts, sizes, data):
+    k = 0
+    for i in range(starts.size):
+        s = starts[i]
+        for j in range(sizes[i]):
+            buffer[s + j] = data[k]
+            k += 1
+
+
+@njit(cache=True)
+def _fill(buffer, starts, sizes, value):
+    for i in range(starts.size):
+        s = starts[i]
+        for j in range(sizes[i]):
+            buffer[s + j] = value[j]
+
+
+@njit(cache=True)
+def _yaw_quaternions(yaws, out):
+    # yaw_quaternion's arithmetic, term for term (signed zeros included)
+    cp = cr = 1.0
+    sp = sr = 0.0
+    for i in range(yaws.size):
+        half = yaws[i] * 0.5
+        cy, sy = math.cos(half), math.sin(half)
+        out[i, 0] = sr * cp * cy - cr * sp * sy
+        out[i, 1] = cr * sp * cy + sr * cp * sy
+        out[i, 2] = cr * cp * sy - sr * sp * cy
+        out[i, 3] = cr * cp * cy + sr * sp * sy
+
+
+@njit(cache=True)
+def _matrix_round_trips(q, out):
+    # matrix_round_trip's arithmetic, term for term
+    for n in range(q.shape[0]):
+        x, y, z, w = q[n, 0], q[n, 1], q[n, 2], q[n, 3]
+        s = 2.0 / (x * x + y * y + z * z + w * w)
+        xs, ys, zs = x * s, y * s, z * s
+        wx, wy, wz = w * xs, w * ys, w * zs
+        xx, xy, xz = x * xs, x * ys, x * zs
+        yy, yz, zz = y * ys, y * zs, z * zs
+        m = np.empty((3, 3))
+        m[0, 0], m[0, 1], m[0, 2] = 1.0 - (yy + zz), xy - wz, xz + wy
+        m[1, 0], m[1, 1], m[1, 2] = xy + wz, 1.0 - (xx + zz), yz - wx
+        m[2, 0], m[2, 1], m[2, 2] = xz - wy, yz + wx, 1.0 - (xx + yy)
+        trace = m[0, 0] + m[1, 1] + m[2, 2]
+        if trace > 0.0:
+            r = math.sqrt(trace + 1.0)
+            out[n, 3] = r * 0.5
+            r = 0.5 / r
+            out[n, 0] = (m[2, 1] - m[1, 2]) * r
+            out[n, 1] = (m[0, 2] - m[2, 0]) * r
+            out[n, 2] = (m[1, 0] - m[0, 1]) * r
+        else:
+            if m[0, 0] < m[1, 1]:
+                i = 2 if m[1, 1] < m[2, 2] else 1
+            else:
+                i = 2 if m[0, 0] < m[2, 2] else 0
+            j, k = (i + 1) % 3, (i + 2) % 3
+            r = math.sqrt(m[i, i] - m[j, j] - m[k, k] + 1.0)
+            out[n, i] = r * 0.5
+            r = 0.5 / r
+            out[n, 3] = (m[k, j] - m[j, k]) * r
+            out[n, j] = (m[j, i] + m[i, j]) * r
+            out[n, k] = (m[k, i] + m[i, k]) * r
+
+
+def yaw_quaternions(yaws):
+    """yaw_quaternion of each yaw: (n, 4) float64, bit for bit."""
+    yaws = np.ascontiguousarray(yaws, np.float64)
+    out = np.empty((yaws.size, 4))
+    _yaw_quaternions(yaws, out)
+    return out
+
+
+def transform_quaternions(yaws):
+    """transform_quaternion of each yaw: (n, 4) float64, bit for bit."""
+    out = np.empty((np.size(yaws), 4))
+    _matrix_round_trips(yaw_quaternions(yaws), out)
+    return out
+
+
+def odometry_parts(frame_id, child_frame_id):
+    """A FrameBatch frame of nav_msgs/Odometry (odometry_frame's layout): fields 'stamp'
+    (seq, secs, nsecs), 'pose' (7 float64), 'twist' (6 float64)."""
+    return [('stamp', HEADER_STAMP.size), frame_id, child_frame_id, ('pose', _POSE.size),
+            _ZERO_COVARIANCE, ('twist', _TWIST.size), _ZERO_COVARIANCE]
+
+
+def odometry_rows(poses, twists, quaternions):
+    """(pose rows, twist rows) for odometry_parts' fields: poses (n, 3) x, y, yaw; twists
+    (n, 3) vx, vy, wz; quaternions (n, 4) of the yaws (yaw_ or transform_quaternions)."""
+    n = len(poses)
+    pose_rows = np.zeros((n, 7), '<f8')
+    pose_rows[:, 0:2] = poses[:, 0:2]
+    pose_rows[:, 3:7] = quaternions
+    twist_rows = np.zeros((n, 6), '<f8')
+    twist_rows[:, 0:2] = twists[:, 0:2]
+    twist_rows[:, 5] = twists[:, 2]
+    return pose_rows, twist_rows
+
+
+def scan_parts(template):
+    """A FrameBatch frame of sensor_msgs/LaserScan from a ScanTemplate: fields 'stamp',
+    'ranges' and 'intensities' (samples float32 each)."""
+    count = _U32.pack(template.samples)
+    size = 4 * template.samples
+    return [('stamp', HEADER_STAMP.size), template.frame_id, template.fields,
+            count, ('ranges', size), count, ('intensities', size)]
+
+
+def transform_parts(parent, child, xyz_yaw=None):
+    """TransformStamped parts for a tf FrameBatch: field 'stamp' (seq 0, secs, nsecs),
+    then the transform: fixed (xyz_yaw given: x, y, z, yaw) or field 'moving' (7 float64:
+    x, y, z and transform_quaternion's rotation)."""
+    if xyz_yaw is None:
+        motion = ('moving', _TRANSFORM.size)
+    else:
+        x, y, z, yaw = xyz_yaw
+        motion = _TRANSFORM.pack(x, y, z, *transform_quaternion(yaw))
+    return [('stamp', HEADER_STAMP.size), parent, child, motion]

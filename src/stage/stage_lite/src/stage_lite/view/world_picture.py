@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from course_common.finite import is_finite_number
-from course_common.trail import Trail
+from course_common.trail import Trails
 
 from ..model.floor import coarsen
 
@@ -284,20 +284,7 @@ def render(camera, base, robots, options=DrawOptions(), status=None):
     return image
 
 
-class Trails:
-    """The recent path of each robot, for pictures: a point whenever it moved min_step_m
-    (course_common.trail.Trail, one per robot)."""
-
-    def __init__(self, count, min_step_m=0.05, max_points=2000):
-        self._trails = [Trail(max_points, min_step_m) for _ in range(count)]
-
-    def add(self, index, x, y):
-        self._trails[index].add(x, y)
-
-    def clear(self):
-        for trail in self._trails:
-            trail.clear()
-
-    def get(self, index):
-        """K x 2 array of robot index's trail (K may be 0)."""
-        return np.asarray(self._trails[index].points(), dtype=float).reshape(-1, 2)
+def trails(count, min_step_m=0.05, max_points=2000):
+    """The robots' trails a picture draws: a point whenever a robot moved min_step_m, the
+    last max_points (course_common.trail.Trails)."""
+    return Trails(count, max_points, min_step_m)

@@ -25,7 +25,7 @@ class WorldView:
 
     def __init__(self, world):
         self.world = world
-        self.trails = picture.Trails(len(world.robots))
+        self.trails = picture.trails(len(world.robots))
         self.options = picture.draw_options(world.window)
         self._angles = [[r.local_angles() for r in robot.rangers] for robot in world.robots]
         self._bodies = [_body_polygons(robot.model) for robot in world.robots]
@@ -34,9 +34,7 @@ class WorldView:
 
     def record(self):
         """After a step: each robot's position joins its trail."""
-        for i, robot in enumerate(self.world.robots):
-            x, y, _ = robot.pose
-            self.trails.add(i, x, y)
+        self.trails.add_all(self.world.robot_poses()[:, :2])
 
     def clear(self):
         """After reset_positions: the trails start again."""

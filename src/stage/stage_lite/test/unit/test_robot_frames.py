@@ -1,0 +1,105 @@
+"""RobotFrames: every robot's frames of a step packed at once, byte for byte the frames wire's
+one-message functions pack (which test_wire holds to rospy's own serialisation)."""
+import math
+import os
+
+import numpy as np
+import pytest
+from stage_lite.model.world import load_world
+from stage_lite.node import wire
+from stage_lite.node.names import all_robot_names
+from stage_lite.node.robot_frames import RobotFrames
+
+WORLDS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'worlds')
+
+
+def one_by_one(world, names, seq, secs, nsecs, odom_child_frame):
+    """The frames as wire's functions pack them, robot by robot (stageros's earlier way)."""
+    s = wire.string_bytes
+    odom, truth, scans, transforms = [], [], [], []
+    for robot, n in zip(world.robots, names, strict=True):
+        child = s(n.footprint_frame if odom_child_frame else '')
+        odom.append(wire.odometry_frame(seq, secs, nsecs, s(n.odom_frame), child,
+                                        robot.odom_pose, robot.command))
+        truth.append(wire.odometry_frame(seq, secs, nsecs, s(n.odom_frame), s(''), robot.pose,
+                                         robot.truth_twist, wire.transform_quaternion))
+        scans.append([wire.ScanTemplate(frame, r.angle_min, r.angle_increment, r.samples,
+                                        r.range_min, r.range_max)
+                      .frame(seq, secs, nsecs, r.ranges, r.intensities)
+                      for frame, r in zip(n.laser_frames, robot.rangers, strict=True)])
+        x, y, yaw = robot.odom_pose
+        transforms.append(wire.transform_bytes(secs, nsecs, s(n.odom_frame),
+                                               s(n.footprint_frame), x, y, 0.0, yaw))
+        transforms.append(wire.transform_bytes(secs, nsecs, s(n.footprint_frame),
+                                               s(n.base_frame), 0.0, 0.0, 0.0, 0.0))
+        for frame, r in zip(n.laser_frames, robot.rangers, strict=True):
+            transforms.append(wire.transform_bytes(secs, nsecs, s(n.base_frame), s(frame),
+                                                   *r.pose))
+    return odom, truth, scans, wire.tf_frame(transforms)
+
+
+def driven_world(name, steps):
+    world = load_world(os.path.join(WORLDS, name))
+    for k in range(steps):
+        for i in range(len(world.robots)):
+            world.set_command(i, 0.4 - 0.1 * i, 0.05 * (i % 2), 0.9 - 0.6 * i + 0.1 * k)
+        world.step()
+    return world
+
+
+@pytest.mark.parametrize('name, odom_child_frame', [
+    ('node_four_robots.world', False), ('node_two_rangers.world', True),
+    ('node_one_robot.world', False)])
+def test_every_frame_equals_the_one_by_one_frame(name, odom_child_frame):
+    world = driven_world(name, 30)
+    names = all_robot_names([r.model_name for r in world.robots],
+                            [len(r.rangers) for r in world.robots])
+    frames = RobotFrames(world, names, odom_child_frame)
+    for seq in (29, 30):        # twice: the second fill overwrites every changing byte
+        world.step()
+        frames.fill(seq, 3 + seq, 100_000_000)
+        odom, truth, scans, tf = one_by_one(world, names, seq, 3 + seq, 100_000_000,
+                                            odom_child_frame)
+        assert [bytes(f) for f in frames.odom] == odom
+        assert [bytes(f) for f in frames.truth] == truth
+        assert [[bytes(f) for f in robot] for robot in frames.scans] == scans
+        assert bytes(frames.tf) == tf
+    assert frames.tf_count == sum(2 + len(r.rangers) for r in world.robots)
+
+
+def test_only_the_kinds_asked_for_are_written():
+    world = driven_world('node_four_robots.world', 5)
+    names = all_robot_names([r.model_name for r in world.robots],
+                            [len(r.rangers) for r in world.robots])
+    frames = RobotFrames(world, names, False)
+    frames.fill(1, 2, 3)
+    before = [bytes(f) for f in frames.truth], bytes(frames.tf)
+    world.step()
+    frames.fill(2, 3, 4, odom=True, truth=False, scans=False, tf=False)
+    assert ([bytes(f) for f in frames.truth], bytes(frames.tf)) == before
+    assert [bytes(f) for f in frames.odom] == one_by_one(world, names, 2, 3, 4, False)[0]
+
+
+YAWS = [0.0, -0.0, math.pi, -math.pi, math.pi / 2, -math.pi / 2, math.radians(-150),
+        math.radians(-120), math.radians(-180) + 1e-15, 1e-300, -1e-300, 2.5, -2.5, 3.1, -3.1]
+
+
+def test_the_quaternion_kernels_equal_the_python_bit_for_bit():
+    yaws = np.concatenate([YAWS, np.random.default_rng(7).uniform(-math.pi, math.pi, 20000)])
+    batch_yaw = wire.yaw_quaternions(yaws)
+    batch_tf = wire.transform_quaternions(yaws)
+    for k, yaw in enumerate(yaws.tolist()):
+        # tobytes: equal bits, signed zeros included
+        assert np.array(wire.yaw_quaternion(yaw)).tobytes() == batch_yaw[k].tobytes(), yaw
+        assert np.array(wire.transform_quaternion(yaw)).tobytes() == batch_tf[k].tobytes(), yaw
+
+
+def test_a_frame_batch_refuses_values_of_the_wrong_size():
+    batch = wire.FrameBatch([[b'ab', ('x', 8)], [('x', 8), b'c']])
+    batch.write('x', np.array([1.5, -2.0]))
+    assert bytes(batch.frames[0]) == wire.uint32_bytes(10) + b'ab' + np.float64(1.5).tobytes()
+    assert bytes(batch.frames[1]) == wire.uint32_bytes(9) + np.float64(-2.0).tobytes() + b'c'
+    with pytest.raises(ValueError, match='field x takes 16 bytes, not 8'):
+        batch.write('x', np.array([1.5]))
+    batch.fill('x', bytes(range(8)))
+    assert bytes(batch.frames[1])[4:12] == bytes(range(8))
