@@ -20,6 +20,7 @@ from course_common.rospy_internals import (
     connection_ids,
     has_subscribers,
     name_mappings,
+    pending_bytes,
     write_frame,
 )
 from course_common.testing import pin, spawn, wait_for
@@ -28,8 +29,6 @@ from rosgraph_msgs.msg import Log
 from rospy.impl.tcpros_base import TCPROSTransport
 from rospy.impl.tcpros_pubsub import QueuedConnection
 from std_msgs.msg import String
-
-from course_common import rospy_internals
 
 DEADLINE_S = 30.0  # connections between processes on a loaded 2-core machine
 # A frame that arrives intact compares equal.
@@ -147,8 +146,7 @@ class RospyInternalsTest(unittest.TestCase):
         try:
             for seq in range(MAX_STALL_FRAMES):
                 write_frame(pub, string_frame(seq))
-                stream = rospy_internals._STREAMS.get(conn)
-                if conn not in pub.impl.connections or (stream is not None and stream.pending):
+                if conn not in pub.impl.connections or pending_bytes(conn):
                     break
             else:
                 self.fail('the buffers never took part of a frame in %d frames' % seq)

@@ -16,7 +16,6 @@ import itertools
 import threading
 import time
 import traceback
-import weakref
 
 import rospy
 import rospy.core
@@ -31,8 +30,8 @@ from course_common.tcpros_frames import FrameStream, split_frames
 
 #: The parameter whose local cache entry cheap_rosout() and cache_rosout_param() seed.
 ROSOUT_TOPICS_PARAM = '/rosout_disable_topics_generation'
-#: write_frame's FrameStream of each connection (forgotten with the connection).
-_STREAMS = weakref.WeakKeyDictionary()
+#: The attribute of a connection (rospy's transport) holding write_frame's FrameStream.
+STREAM_ATTR = 'course_frame_stream'
 #: throttled_topic_checks(): at most one check of every topic's connections this often, s
 #: (rospy's own period when no registration comes in: RegManager.run's cond.wait(0.5))
 TOPIC_CHECK_PERIOD_S = 0.5
@@ -73,21 +72,34 @@ def write_frame(pub, frame):
     and gets whole messages again once it reads. A connection that fails is removed and
     closed.
     """
-    impl = pub.impl
-    if impl is None or impl.closed:
-        return  # unregistered (killed) between the step and the publish
-    for conn in impl.connections:
-        try:
-            stream = _STREAMS.get(conn)
-            if stream is None:
-                stream = _STREAMS[conn] = FrameStream()
-            if stream.send(conn.socket, frame):
-                conn.stat_bytes += len(frame)
-                conn.stat_num_msg += 1
-        except Exception:
-            with contextlib.suppress(Exception):
-                impl.remove_connection(conn)
-                conn.close()
+    write_frames(((pub, frame),))
+
+
+def write_frames(pub_frames):
+    """write_frame(pub, frame) for each (pub, frame), in order: a step's frames in one call
+    (stageros sends a few per robot every step)."""
+    for pub, frame in pub_frames:
+        impl = pub.impl
+        if impl is None or impl.closed:
+            continue    # unregistered (killed) between the step and the publish
+        for conn in impl.connections:
+            try:
+                stream = conn.__dict__.get(STREAM_ATTR)
+                if stream is None:
+                    stream = conn.__dict__[STREAM_ATTR] = FrameStream()
+                if stream.send(conn.socket, frame):
+                    conn.stat_bytes += len(frame)
+                    conn.stat_num_msg += 1
+            except Exception:
+                with contextlib.suppress(Exception):
+                    impl.remove_connection(conn)
+                    conn.close()
+
+
+def pending_bytes(conn):
+    """Bytes of a frame the connection's buffers took part of, still to be sent."""
+    stream = conn.__dict__.get(STREAM_ATTR)
+    return 0 if stream is None else stream.pending
 
 
 def throttled_topic_checks(period_s=TOPIC_CHECK_PERIOD_S):

@@ -45,10 +45,14 @@ class FrameStream:
             self._tail = self._tail[sent:]
             if self._tail:
                 return False
-        sent = self._send_now(sock, frame)
+        try:
+            sent = sock.send(frame, socket.MSG_DONTWAIT)
+        except (BlockingIOError, InterruptedError):
+            return False
         if sent == 0:
             return False
-        self._tail = bytes(frame[sent:])
+        if sent < len(frame):
+            self._tail = bytes(frame[sent:])
         return True
 
     @staticmethod

@@ -2,7 +2,7 @@
 
 Each step's messages are packed as TCPROS frames (stage_lite.wire) from the world's numbers
 and arrays, only for topics that have subscribers, and written by
-course_common.rospy_internals.write_frame (no message objects, no rospy send queues).
+course_common.rospy_internals.write_frames (no message objects, no rospy send queues).
 collect() runs under the node's lock (it reads the world); send() runs outside it.
 """
 import time
@@ -10,7 +10,7 @@ import time
 import rosgraph
 import rospy
 from course_common.publishers import unqueued_publisher
-from course_common.rospy_internals import deliver_bodies, has_subscribers, write_frame
+from course_common.rospy_internals import deliver_bodies, has_subscribers, write_frames
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
@@ -141,7 +141,6 @@ class StepOutput:
 
     @staticmethod
     def send(frames, stalls):
-        for pub, frame in frames:
-            write_frame(pub, frame)
+        write_frames(frames)
         for pub, value in stalls:
             pub.publish(Bool(value))
