@@ -46,7 +46,7 @@ from .finders import update_all
 from .glibc_random import Rand48, Random
 from .motion import Chains, Motion, elements
 from .noise import RangerNoise
-from .robot_state import RobotArrays
+from .robot_state import MODE_CODE, RobotArrays
 from .runtime_models import redraw_if_changed
 from .scheduler import CB_UPDATE, Scheduler
 from .sight import Sight
@@ -55,6 +55,8 @@ from .step_each import RobotByRobot
 from .worldfile import WorldError
 
 __all__ = ['World', 'WorldError', 'load_world']
+
+VELOCITY = MODE_CODE['velocity']    # Stage's CONTROL_VELOCITY: what cmd_vel sets
 
 
 class World(RangerCasts, RobotByRobot):
@@ -216,10 +218,11 @@ class World(RangerCasts, RobotByRobot):
     def set_command(self, i, vx, vy, wz):
         """stageros's cmdvelReceived: SetSpeed(x, y, a), applied at the robot's next update.
         Raises ValueError on NaN or infinity (the node refuses those with a WARN)."""
-        vx, vy, wz = (finite_float(name, v)
-                      for name, v in (('linear.x', vx), ('linear.y', vy), ('angular.z', wz)))
-        self.robots[i].goal = (vx, vy, 0.0, wz)
-        self.robots[i].control_mode = 'velocity'
+        goal = (finite_float('linear.x', vx), finite_float('linear.y', vy), 0.0,
+                finite_float('angular.z', wz))
+        goals, modes, row = self.robots[i].command_rows()    # a swarm's cmd_vels: no properties
+        goals[row] = goal
+        modes[row] = VELOCITY
 
     def stop_all(self):
         """stageros's watchdog: SetSpeed(0, 0, 0) on every robot."""
