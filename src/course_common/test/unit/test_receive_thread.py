@@ -37,6 +37,15 @@ class Reader:
             return self.data
 
 
+def serve_a_later_socket(receiver, pairs):
+    """Waits until a socket added now is read: every change made before it has applied."""
+    other_a, other_b = pairs()
+    marker = Reader(other_b)
+    receiver.add(other_b, marker)
+    other_a.sendall(b'x')
+    wait_for(lambda: marker.received() == b'x', DEADLINE_S, 'a later socket served')
+
+
 @pytest.fixture
 def pairs():
     made = []
@@ -77,11 +86,7 @@ def test_reader_returning_false_is_not_called_again(pairs):
     a.sendall(b'one')
     wait_for(lambda: reader.received() == b'one', DEADLINE_S, 'the first bytes')
     a.sendall(b'two')   # readable again, but the reader asked to be dropped
-    other_a, other_b = pairs()
-    marker = Reader(other_b)
-    receiver.add(other_b, marker)
-    other_a.sendall(b'x')
-    wait_for(lambda: marker.received() == b'x', DEADLINE_S, 'a later socket served')
+    serve_a_later_socket(receiver, pairs)   # changes apply in order: any drop first
     assert reader.calls == 1 and b.recv(10) == b'two'
 
 
@@ -92,11 +97,7 @@ def test_removed_socket_is_no_longer_read(pairs):
     receiver.add(b, reader)
     receiver.remove(b)
     a.sendall(b'late')
-    other_a, other_b = pairs()
-    marker = Reader(other_b)
-    receiver.add(other_b, marker)          # changes apply in order: the removal first
-    other_a.sendall(b'x')
-    wait_for(lambda: marker.received() == b'x', DEADLINE_S, 'a later socket served')
+    serve_a_later_socket(receiver, pairs)   # changes apply in order: any drop first
     assert reader.calls == 0 and b.recv(10) == b'late'
 
 
@@ -172,9 +173,5 @@ def test_first_returning_false_drops_the_socket(pairs):
     receiver.add(b, reader, first)
     a.sendall(b'unread')
     wait_for(lambda: first.threads, DEADLINE_S, 'the first call')
-    other_a, other_b = pairs()
-    marker = Reader(other_b)
-    receiver.add(other_b, marker)
-    other_a.sendall(b'x')
-    wait_for(lambda: marker.received() == b'x', DEADLINE_S, 'a later socket served')
+    serve_a_later_socket(receiver, pairs)   # changes apply in order: any drop first
     assert reader.calls == 0 and b.recv(10) == b'unread'
