@@ -128,6 +128,23 @@ def peak_rss_mb(pid):
         return status_rss_mb(status.read(), 'VmHWM')
 
 
+#: The signals a terminal's keys send (Ctrl-C, Ctrl-\\), at their defaults in a job it starts.
+TERMINAL_SIGNALS = (signal.SIGINT, signal.SIGQUIT)
+
+
+def _terminal_signals_if_ignored():
+    """What a child runs before exec so that TERMINAL_SIGNALS act on it (None when this
+    process does not ignore them: a child's handled signals are reset by exec anyway)."""
+    if not any(signal.getsignal(s) == signal.SIG_IGN for s in TERMINAL_SIGNALS):
+        return None
+    return _default_terminal_signals
+
+
+def _default_terminal_signals():
+    for s in TERMINAL_SIGNALS:
+        signal.signal(s, signal.SIG_DFL)
+
+
 class ChildProcess:
     """A child process in a session of its own, its output read as it comes; a context manager.
 
@@ -140,7 +157,9 @@ class ChildProcess:
     stop() sends SIGINT to the session, as Ctrl-C in a terminal does to what runs in it (ROS
     tools then shut down cleanly: roslaunch stops its nodes and master, rosbag record closes
     its bag, a node sends its last command), and SIGKILLs the session if the process has not
-    exited after stop_timeout_s.
+    exited after stop_timeout_s. Its Ctrl-C and Ctrl-\\ act as in a terminal's job even when
+    this process ignores them (a shell's background job, `cmd &`, does, and children inherit
+    what is ignored).
     env: variables added to this process's environment (a value None removes one).
     on_line: called by the reader with each complete output line, as it comes.
     """
@@ -190,7 +209,8 @@ class ChildProcess:
                        'stderr': subprocess.STDOUT}
         try:
             self.proc = subprocess.Popen(self.argv, env=env, cwd=self.cwd,
-                                         start_new_session=True, **streams)
+                                         start_new_session=True,
+                                         preexec_fn=_terminal_signals_if_ignored(), **streams)
         except OSError:  # no such program: leave nothing open behind
             for fd in (self._fd, self._slave):
                 if fd is not None:

@@ -5,6 +5,7 @@ SIGINT first, SIGKILL for a child that ignores it, a terminal, a log file.
 """
 import os
 import signal
+import subprocess
 import sys
 import termios
 import time
@@ -278,3 +279,21 @@ def test_pid_running_counts_neither_a_zombie_nor_a_reaped_child():
     assert os.path.exists('/proc/%d' % child.pid)  # not reaped yet: a zombie
     child.wait()
     assert not pid_running(child.pid)
+
+
+# A parent that ignores Ctrl-C (as a shell's background job does), then starts ON_SIGINT's
+# twin with a default SIGINT through ChildProcess and interrupts it: exit code and output.
+IGNORING_PARENT = ('import signal, sys\n'
+                   'signal.signal(signal.SIGINT, signal.SIG_IGN)\n'
+                   'from course_common.processes import ChildProcess\n'
+                   'child = ChildProcess([sys.executable, "-c", "import time\\n'
+                   'print(\'ready\', flush=True)\\ntime.sleep(60)"]).start()\n'
+                   'child.wait_line("ready", 20)\n'
+                   'child.interrupt()\n'
+                   'print(child.wait_exit(20))\n')
+
+
+def test_ctrl_c_reaches_a_child_of_a_parent_that_ignores_it():
+    done = subprocess.run([sys.executable, '-c', IGNORING_PARENT], capture_output=True,
+                          text=True, timeout=60, check=False)
+    assert done.stdout.split() == [str(-signal.SIGINT)], done.stderr
