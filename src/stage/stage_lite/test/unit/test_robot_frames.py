@@ -103,3 +103,14 @@ def test_a_frame_batch_refuses_values_of_the_wrong_size():
         batch.write('x', np.array([1.5]))
     batch.fill('x', bytes(range(8)))
     assert bytes(batch.frames[1])[4:12] == bytes(range(8))
+
+
+def test_a_world_without_robots_has_an_empty_tf_message(tmp_path):
+    path = tmp_path / 'no_robot.world'
+    path.write_text('size [10 10 1]\nmodel ( name "box" pose [1 1 0 0] size [0.5 0.5 0.5] )\n')
+    world = load_world(str(path))
+    frames = RobotFrames(world, [], False)
+    world.step()
+    frames.fill(1, 2, 3)
+    assert (frames.odom, frames.truth, frames.scans) == ([], [], [])
+    assert bytes(frames.tf) == wire.tf_frame([])

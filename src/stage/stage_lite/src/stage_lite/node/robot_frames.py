@@ -60,6 +60,8 @@ class RobotFrames:
 
     def fill(self, seq, secs, nsecs, odom=True, truth=True, scans=True, tf=True):
         """Writes this step's numbers into the frames asked for (seq: the headers' seq)."""
+        if not self.views:
+            return      # no robot: nothing changes (/tf is an empty message)
         state = self.world.state
         stamp = wire.HEADER_STAMP.pack(seq, secs, nsecs)
         if odom or tf:
