@@ -174,7 +174,6 @@ class FrameBatch:
         starts = {}
         chunks = []
         offset = 0
-        self.frames = []
         spans = []
         for parts in frames_parts:
             body = sum(len(p) if isinstance(p, bytes) else p[1] for p in parts)
