@@ -73,11 +73,21 @@ class ReceiveThread:
 
     def _run(self):
         while True:
-            for key, _ in self._selector.select():
-                if key.data is None:
-                    self._apply_changes()
-                else:
+            ready = self._selector.select()
+            # Changes first: a socket removed before its bytes came must not be read, even
+            # when epoll lists its bytes ahead of the wake-up that carries the removal.
+            if any(key.data is None for key, _ in ready):
+                self._apply_changes()
+            for key, _ in ready:
+                if key.data is not None and self._still_waited_on(key):
                     self._call(key.data, key.fileobj)
+
+    def _still_waited_on(self, key):
+        """False once key's socket was dropped (or dropped and added again) in this round."""
+        try:
+            return self._selector.get_key(key.fileobj) is key
+        except (KeyError, ValueError):              # dropped, or closed since
+            return False
 
     def _call(self, reader, sock):
         """reader() for sock; sock no longer waited on if it returns False or raises."""

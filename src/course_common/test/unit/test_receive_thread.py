@@ -101,6 +101,27 @@ def test_removed_socket_is_no_longer_read(pairs):
     assert reader.calls == 0 and b.recv(10) == b'late'
 
 
+def test_socket_removed_after_its_bytes_came_is_not_read(pairs):
+    # In the thread itself, b's bytes arrive first and its removal second: the next
+    # wait sees both, and the removal must win (epoll lists b's bytes first).
+    receiver = ReceiveThread('receiver_remove_late', lambda r, e: None)
+    a, b = pairs()
+    trigger_a, trigger_b = pairs()
+    reader = Reader(b)
+    receiver.add(b, reader)
+    serve_a_later_socket(receiver, pairs)   # b is waited on from here
+
+    def bytes_then_removal():
+        trigger_b.recv(10)
+        a.sendall(b'late')
+        receiver.remove(b)
+        return False
+    receiver.add(trigger_b, bytes_then_removal)
+    trigger_a.sendall(b'go')
+    serve_a_later_socket(receiver, pairs)
+    assert reader.calls == 0 and b.recv(10) == b'late'
+
+
 def test_a_failing_reader_is_reported_and_the_others_go_on(pairs):
     errors = []
     receiver = ReceiveThread('receiver_fail', lambda r, e: errors.append((r, e)))
