@@ -1,41 +1,83 @@
-"""RobotFrames: every robot's frames of a step packed at once, byte for byte the frames wire's
-one-message functions pack (which test_wire holds to rospy's own serialisation)."""
+"""RobotFrames: every robot's frames of a step packed at once, byte for byte the frames rospy
+sends for the same messages (genpy's own classes, filled field by field as stageros fills them)."""
+import io
 import math
 import os
 
 import numpy as np
 import pytest
+from geometry_msgs.msg import Quaternion, TransformStamped
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import LaserScan
 from stage_lite.model.world import load_world
 from stage_lite.node import wire
 from stage_lite.node.names import all_robot_names
 from stage_lite.node.robot_frames import RobotFrames
+from tf2_msgs.msg import TFMessage
 
 WORLDS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'worlds')
 
 
+def genpy_frame(msg):
+    """msg as rospy frames it: its serialised length, then its bytes."""
+    buff = io.BytesIO()
+    msg.serialize(buff)
+    return wire.uint32_bytes(len(buff.getvalue())) + buff.getvalue()
+
+
+def stamped(msg, seq, secs, nsecs, frame_id):
+    msg.header.seq, msg.header.frame_id = seq, frame_id
+    msg.header.stamp.secs, msg.header.stamp.nsecs = secs, nsecs
+    return msg
+
+
+def odometry(seq, secs, nsecs, frame_id, child, pose, twist, quaternion):
+    msg = stamped(Odometry(), seq, secs, nsecs, frame_id)
+    msg.child_frame_id = child
+    msg.pose.pose.position.x, msg.pose.pose.position.y = pose[0], pose[1]
+    msg.pose.pose.orientation = Quaternion(*quaternion(pose[2]))
+    msg.twist.twist.linear.x, msg.twist.twist.linear.y = twist[0], twist[1]
+    msg.twist.twist.angular.z = twist[2]
+    return msg
+
+
+def scan(seq, secs, nsecs, frame_id, ranger):
+    msg = stamped(LaserScan(), seq, secs, nsecs, frame_id)
+    msg.angle_min, msg.angle_max = ranger.angle_min, -ranger.angle_min
+    msg.angle_increment = ranger.angle_increment
+    msg.range_min, msg.range_max = ranger.range_min, ranger.range_max
+    msg.ranges, msg.intensities = list(ranger.ranges), list(ranger.intensities)
+    return msg
+
+
+def transform(secs, nsecs, parent, child, x, y, z, yaw):
+    msg = stamped(TransformStamped(), 0, secs, nsecs, parent)
+    msg.child_frame_id = child
+    msg.transform.translation.x, msg.transform.translation.y = x, y
+    msg.transform.translation.z = z
+    msg.transform.rotation = Quaternion(*wire.transform_quaternion(yaw))
+    return msg
+
+
 def one_by_one(world, names, seq, secs, nsecs, odom_child_frame):
-    """The frames as wire's functions pack them, robot by robot (stageros's earlier way)."""
-    s = wire.string_bytes
+    """The frames of genpy's messages, robot by robot, as stageros fills them."""
     odom, truth, scans, transforms = [], [], [], []
     for robot, n in zip(world.robots, names, strict=True):
-        child = s(n.footprint_frame if odom_child_frame else '')
-        odom.append(wire.odometry_frame(seq, secs, nsecs, s(n.odom_frame), child,
-                                        robot.odom_pose, robot.command))
-        truth.append(wire.odometry_frame(seq, secs, nsecs, s(n.odom_frame), s(''), robot.pose,
-                                         robot.truth_twist, wire.transform_quaternion))
-        scans.append([wire.ScanTemplate(frame, r.angle_min, r.angle_increment, r.samples,
-                                        r.range_min, r.range_max)
-                      .frame(seq, secs, nsecs, r.ranges, r.intensities)
+        child = n.footprint_frame if odom_child_frame else ''
+        odom.append(genpy_frame(odometry(seq, secs, nsecs, n.odom_frame, child,
+                                         robot.odom_pose, robot.command, wire.yaw_quaternion)))
+        truth.append(genpy_frame(odometry(seq, secs, nsecs, n.odom_frame, '', robot.pose,
+                                          robot.truth_twist, wire.transform_quaternion)))
+        scans.append([genpy_frame(scan(seq, secs, nsecs, frame, r))
                       for frame, r in zip(n.laser_frames, robot.rangers, strict=True)])
         x, y, yaw = robot.odom_pose
-        transforms.append(wire.transform_bytes(secs, nsecs, s(n.odom_frame),
-                                               s(n.footprint_frame), x, y, 0.0, yaw))
-        transforms.append(wire.transform_bytes(secs, nsecs, s(n.footprint_frame),
-                                               s(n.base_frame), 0.0, 0.0, 0.0, 0.0))
+        transforms.append(transform(secs, nsecs, n.odom_frame, n.footprint_frame,
+                                    x, y, 0.0, yaw))
+        transforms.append(transform(secs, nsecs, n.footprint_frame, n.base_frame,
+                                    0.0, 0.0, 0.0, 0.0))
         for frame, r in zip(n.laser_frames, robot.rangers, strict=True):
-            transforms.append(wire.transform_bytes(secs, nsecs, s(n.base_frame), s(frame),
-                                                   *r.pose))
-    return odom, truth, scans, wire.tf_frame(transforms)
+            transforms.append(transform(secs, nsecs, n.base_frame, frame, *r.pose))
+    return odom, truth, scans, genpy_frame(TFMessage(transforms=transforms))
 
 
 def driven_world(name, steps):
@@ -113,4 +155,4 @@ def test_a_world_without_robots_has_an_empty_tf_message(tmp_path):
     world.step()
     frames.fill(1, 2, 3)
     assert (frames.odom, frames.truth, frames.scans) == ([], [], [])
-    assert bytes(frames.tf) == wire.tf_frame([])
+    assert bytes(frames.tf) == genpy_frame(TFMessage())

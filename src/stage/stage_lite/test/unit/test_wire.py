@@ -20,6 +20,22 @@ def _body(frame):
     return frame[4:]
 
 
+def one_frame(parts, stamp, **fields):
+    """The frame of one FrameBatch of parts, its header (seq, secs, nsecs) and fields set."""
+    batch = wire.FrameBatch([parts])
+    batch.fill('stamp', wire.HEADER_STAMP.pack(*stamp))
+    for name, values in fields.items():
+        batch.write(name, values)
+    return bytes(batch.frames[0])
+
+
+def odometry_frame(stamp, frame_id, child, pose, twist, quaternions=wire.yaw_quaternions):
+    poses, twists = wire.odometry_rows(np.array([pose]), np.array([twist]),
+                                       quaternions([pose[2]]))
+    return one_frame(wire.odometry_parts(wire.string_bytes(frame_id), wire.string_bytes(child)),
+                     stamp, pose=poses, twist=twists)
+
+
 def test_clock():
     msg = Clock().deserialize(_body(wire.clock_frame(12, 300_000_000)))
     assert (msg.clock.secs, msg.clock.nsecs) == (12, 300_000_000)
@@ -27,9 +43,8 @@ def test_clock():
 
 @pytest.mark.parametrize('child', ['', 'base_footprint'])
 def test_odometry(child):
-    frame = wire.odometry_frame(7, 3, 500, wire.string_bytes('/robot_0/odom'),
-                                wire.string_bytes(child), (-11.5, 23.5, math.pi / 2),
-                                (0.2, 0.0, -0.3))
+    frame = odometry_frame((7, 3, 500), '/robot_0/odom', child, (-11.5, 23.5, math.pi / 2),
+                           (0.2, 0.0, -0.3))
     msg = Odometry().deserialize(_body(frame))
     assert (msg.header.seq, msg.header.stamp.secs, msg.header.stamp.nsecs) == (7, 3, 500)
     assert (msg.header.frame_id, msg.child_frame_id) == ('/robot_0/odom', child)
@@ -48,7 +63,9 @@ def test_laser_scan_fields_as_stage_fills_them():
                                  samples, 0.0, 30.0)
     ranges = np.linspace(0.5, 30.0, samples, dtype=np.float32)
     intensities = np.ones(samples, np.float32)
-    msg = LaserScan().deserialize(_body(template.frame(4, 1, 100_000_000, ranges, intensities)))
+    frame = one_frame(wire.scan_parts(template), (4, 1, 100_000_000), ranges=ranges,
+                      intensities=intensities)
+    msg = LaserScan().deserialize(_body(frame))
     assert msg.header.frame_id == '/robot_1/base_laser_link'
     assert msg.angle_min == pytest.approx(-2.35838, abs=1e-5)
     assert msg.angle_max == pytest.approx(2.35838, abs=1e-5)
@@ -60,11 +77,12 @@ def test_laser_scan_fields_as_stage_fills_them():
 
 def test_tf_message_holds_every_transform():
     s = wire.string_bytes
-    transforms = [wire.transform_bytes(2, 0, s('/robot_0/odom'), s('/robot_0/base_footprint'),
-                                       1.0, 2.0, 0.0, 0.5),
-                  wire.transform_bytes(2, 0, s('/robot_0/base_link'),
-                                       s('/robot_0/base_laser_link'), 0.05, 0.0, 0.25, 0.0)]
-    msg = TFMessage().deserialize(_body(wire.tf_frame(transforms)))
+    moving = np.array([[1.0, 2.0, 0.0, *wire.transform_quaternion(0.5)]])
+    parts = [wire.uint32_bytes(2),
+             *wire.transform_parts(s('/robot_0/odom'), s('/robot_0/base_footprint')),
+             *wire.transform_parts(s('/robot_0/base_link'), s('/robot_0/base_laser_link'),
+                                   (0.05, 0.0, 0.25, 0.0))]
+    msg = TFMessage().deserialize(_body(one_frame(parts, (0, 2, 0), moving=moving)))
     assert [(t.header.frame_id, t.child_frame_id) for t in msg.transforms] == \
         [('/robot_0/odom', '/robot_0/base_footprint'),
          ('/robot_0/base_link', '/robot_0/base_laser_link')]
@@ -91,9 +109,8 @@ def test_transform_quaternion_is_tfs_round_trip(degrees, flipped):
 
 
 def test_ground_truth_orientation_through_the_transform():
-    s = wire.string_bytes
-    frame = wire.odometry_frame(1, 0, 0, s('/robot_0/odom'), s(''), (0.0, 0.0, math.radians(-150)),
-                                (0.0, 0.0, 0.0), wire.transform_quaternion)
+    frame = odometry_frame((1, 0, 0), '/robot_0/odom', '', (0.0, 0.0, math.radians(-150)),
+                           (0.0, 0.0, 0.0), wire.transform_quaternions)
     q = Odometry().deserialize(_body(frame)).pose.pose.orientation
     assert q.w < 0 and (q.z, q.w) == wire.transform_quaternion(math.radians(-150))[2:]
 

@@ -21,7 +21,7 @@ import struct
 
 import numpy as np
 
-from .wire import HEADER_STAMP, matrix_round_trip, string_bytes
+from .wire import HEADER_STAMP, frame_of, matrix_round_trip, string_bytes
 
 _U32 = struct.Struct('<I')
 _SIZE = struct.Struct('<II')
@@ -33,13 +33,8 @@ DEPTH_32F = '32FC1'
 DEPTH_16U = '16UC1'
 
 
-def _frame(parts):
-    body = b''.join(parts)
-    return _U32.pack(len(body)) + body
-
-
 def _image(seq, secs, nsecs, frame_id, height, width, encoding, step, data):
-    return _frame((HEADER_STAMP.pack(seq, secs, nsecs), frame_id, _SIZE.pack(height, width),
+    return frame_of((HEADER_STAMP.pack(seq, secs, nsecs), frame_id, _SIZE.pack(height, width),
                    string_bytes(encoding), _STEP.pack(0, step), _U32.pack(len(data)), data))
 
 
@@ -79,7 +74,7 @@ def camera_info_frame(seq, secs, nsecs, frame_id, width, height, fx, fy, cx, cy)
     k = (fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0)
     r = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
     p = (fx, 0.0, cx, 0.0, 0.0, fy, cy, 0.0, 0.0, 0.0, 1.0, 0.0)
-    return _frame((HEADER_STAMP.pack(seq, secs, nsecs), frame_id, _SIZE.pack(height, width),
+    return frame_of((HEADER_STAMP.pack(seq, secs, nsecs), frame_id, _SIZE.pack(height, width),
                    string_bytes(''), _U32.pack(4), struct.pack('<4d', 0.0, 0.0, 0.0, 0.0),
                    struct.pack('<9d', *k), struct.pack('<9d', *r), struct.pack('<12d', *p),
                    _INFO_TAIL.pack(0, 0, 0, 0, 0, 0, 0)))

@@ -1,10 +1,10 @@
 """Every robot's frames of a step, packed at once: odometry, ground truth, scans and the one
 /tf message (no rospy).
 
-stageros on a swarm sends a few messages per robot every step; packed one by one (wire's
-functions) they were most of its step at 100 robots. RobotFrames keeps each kind in a
-wire.FrameBatch and writes the step's numbers for every robot from the world's arrays in a
-few array operations, the bytes equal to wire's one-by-one frames.
+stageros on a swarm sends a few messages per robot every step; packed one message at a time
+they were most of its step at 100 robots. RobotFrames keeps each kind in a wire.FrameBatch
+and writes the step's numbers for every robot from the world's arrays in a few array
+operations, the bytes equal to rospy's serialisation of the same messages (test_robot_frames).
 """
 import numpy as np
 

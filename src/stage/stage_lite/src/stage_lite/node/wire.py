@@ -101,7 +101,8 @@ def matrix_round_trip(quaternion):
     return tuple(q)
 
 
-def _frame(body_parts):
+def frame_of(body_parts):
+    """The TCPROS frame of a message's serialised parts: their length, then them."""
     body = b''.join(body_parts)
     return _U32.pack(len(body)) + body
 
@@ -109,21 +110,6 @@ def _frame(body_parts):
 def clock_frame(secs, nsecs):
     """rosgraph_msgs/Clock."""
     return _CLOCK.pack(8, secs, nsecs)
-
-
-def odometry_frame(seq, secs, nsecs, frame_id, child_frame_id, pose, twist,
-                   quaternion=yaw_quaternion):
-    """nav_msgs/Odometry; frame ids as string_bytes(); pose (x, y, yaw), twist (vx, vy, wz);
-    quaternion: how stageros makes the orientation (odom: yaw_quaternion, ground truth:
-    transform_quaternion).
-
-    z, roll and pitch are 0 and both covariances are zero, as stageros fills them.
-    """
-    x, y, yaw = pose
-    vx, vy, wz = twist
-    return _frame((HEADER_STAMP.pack(seq, secs, nsecs), frame_id, child_frame_id,
-                   _POSE.pack(x, y, 0.0, *quaternion(yaw)), _ZERO_COVARIANCE,
-                   _TWIST.pack(vx, vy, 0.0, 0.0, 0.0, wz), _ZERO_COVARIANCE))
 
 
 class ScanTemplate:
@@ -137,25 +123,11 @@ class ScanTemplate:
                                         range_min, range_max)
         self.samples = samples
 
-    def frame(self, seq, secs, nsecs, ranges, intensities):
-        """sensor_msgs/LaserScan with ranges and intensities (float32 arrays of samples)."""
-        r = np.ascontiguousarray(ranges, dtype='<f4')
-        i = np.ascontiguousarray(intensities, dtype='<f4')
-        return _frame((HEADER_STAMP.pack(seq, secs, nsecs), self.frame_id, self.fields,
-                       _U32.pack(r.size), r.tobytes(), _U32.pack(i.size), i.tobytes()))
-
-
-def transform_bytes(secs, nsecs, parent, child, x, y, z, yaw):
-    """One geometry_msgs/TransformStamped (seq 0, as tf's broadcaster leaves it); the
-    rotation as stageros's tf::Transform gives it back (transform_quaternion)."""
-    return b''.join((HEADER_STAMP.pack(0, secs, nsecs), parent, child,
-                     _TRANSFORM.pack(x, y, z, *transform_quaternion(yaw))))
-
 
 def tf_frame(transforms, count=None):
-    """tf2_msgs/TFMessage of already packed transform_bytes() (count: how many transforms
-    they hold, if not one each)."""
-    return _frame((_U32.pack(len(transforms) if count is None else count), *transforms))
+    """tf2_msgs/TFMessage of already serialised geometry_msgs/TransformStamped (count: how
+    many transforms they hold, if not one each)."""
+    return frame_of((_U32.pack(len(transforms) if count is None else count), *transforms))
 
 
 # ---- every robot's frames of a step at once ----------------------------------------------
@@ -296,8 +268,8 @@ def transform_quaternions(yaws):
 
 
 def odometry_parts(frame_id, child_frame_id):
-    """A FrameBatch frame of nav_msgs/Odometry (odometry_frame's layout): fields 'stamp'
-    (seq, secs, nsecs), 'pose' (7 float64), 'twist' (6 float64)."""
+    """A FrameBatch frame of nav_msgs/Odometry: fields 'stamp' (seq, secs, nsecs), 'pose'
+    (7 float64), 'twist' (6 float64); both covariances zero, as stageros fills them."""
     return [('stamp', HEADER_STAMP.size), frame_id, child_frame_id, ('pose', _POSE.size),
             _ZERO_COVARIANCE, ('twist', _TWIST.size), _ZERO_COVARIANCE]
 
