@@ -47,7 +47,7 @@ WORLDS_DIR = '/work/scratch/worlds'
 WORLDS = (('simple', 'simple.world', 10, 310),
           ('autolab', 'autolab_run.world', 5, 35),
           ('pioneer_flocking', 'pioneer_flocking_run.world', 5, 45),
-          ('SFU', 'SFU_run.world', 5, 45),
+          ('SFU', 'SFU_run.world', 5, 305),     # Stage's load (4.8 GB) swings by 1 s
           ('fasr2', 'fasr2.world', 5, 35),
           ('cave', 'benchmark/cave.world', 5, 35),
           ('hospital', 'benchmark/hospital.world', 2, 12))
@@ -103,10 +103,16 @@ def run(command, world, env):
 
 
 def measure(command, short, long_, span_s, env):
-    """One run of each copy: (wall s per simulated s, cores, peak RSS MB)."""
+    """One run of each copy: (wall s per simulated s, cores, peak RSS MB), or None when the
+    longer run did not take longer (start-up's swing larger than the span's cost)."""
     wall0, cpu0, _ = run(command, short, env)
     wall1, cpu1, rss = run(command, long_, env)
-    wall = max(wall1 - wall0, 1e-3)
+    wall = wall1 - wall0
+    if wall <= 0.0:
+        print('bench: %s: %s took %.2f s, %s %.2f s: not counted' % (
+            command[0], os.path.basename(long_), wall1, os.path.basename(short), wall0),
+            flush=True)
+        return None
     return wall / span_s, (cpu1 - cpu0) / wall, rss
 
 
@@ -162,21 +168,26 @@ def main(argv=None):
                 for side, command, env in sides:     # one simulator at a time, in turn
                     print('bench: %s, %s, run %d of %d' % (name, side, k + 1, args.runs),
                           flush=True)
-                    runs[side].append(measure(command, short, long_, t2 - t1, env))
+                    got = measure(command, short, long_, t2 - t1, env)
+                    if got is not None:
+                        runs[side].append(got)
             rows.append((name, {side: tuple(statistics.median(r[i] for r in got)
-                                            for i in range(3))
+                                            for i in range(3)) if got else None
                                 for side, got in runs.items()}))
     print()
     print('| world | simulator | wall ms per simulated s | real-time factor | vs Stage | cores |'
           ' peak RSS MB |')
     print('|---|---|---|---|---|---|---|')
     for name, by in rows:
-        real = by['Stage'][0]
+        real = by['Stage'][0] if by['Stage'] else None
         for side, _, _ in sides:
+            if by[side] is None:
+                print('| %s | %s | no run counted | | | | |' % (name, side))
+                continue
             wall, cores, rss = by[side]
+            versus = '' if side == 'Stage' or real is None else '**%.2f x**' % (real / wall)
             print('| %s | %s | %.1f | %.2f | %s | %.2f | %.0f |' % (
-                name, side, wall * 1e3, 1 / wall,
-                '' if side == 'Stage' else '**%.2f x**' % (real / wall), cores, rss))
+                name, side, wall * 1e3, 1 / wall, versus, cores, rss))
 
 
 if __name__ == '__main__':

@@ -27,7 +27,8 @@ at 0 and nothing else happens: Stage 4.3 stops no model for lack of energy.
 """
 import numpy as np
 
-from . import grid
+from .grid import RBITS, REGION
+from .jit import njit
 
 ENERGY_INTERVAL_US = 100000          # Model::interval_energy, fixed in Stage 4.3
 POSITION_WATTS = 1.0                 # ModelPosition's base draw
@@ -256,17 +257,10 @@ class Energy:
     @staticmethod
     def _dynamic_in(space, xs, ys, layer, found):
         """Adds the model index of every moving block listed in the cells (xs, ys)."""
-        tx = (xs >> grid.RBITS) - space.rx0
-        ty = (ys >> grid.RBITS) - space.ry0
-        inside = (tx >= 0) & (ty >= 0) & (tx < space.nrx) & (ty < space.nry)
-        reg = np.where(inside, ty * space.nrx + tx, 0)
-        page = np.where(inside, space.reg_dyn[reg], -1)
-        cell = (ys & (grid.REGION - 1)) * grid.REGION + (xs & (grid.REGION - 1))
-        for k in np.flatnonzero(page >= 0):
-            e = space.dyn_head[page[k], layer, cell[k]]
-            while e >= 0:
-                found.add(int(space.blk_model[space.ent_block[e]]))
-                e = space.ent_next[e]
+        found.update(_dynamic_models(xs, ys, layer, space.rx0, space.ry0, space.nrx,
+                                     space.nry, space.reg_dyn, space.dyn_head,
+                                     space.ent_block, space.ent_next,
+                                     space.blk_model).tolist())
 
     def _takers(self):
         """The static models that could take a charge (take_watts and a pack), with their
@@ -292,3 +286,31 @@ def outline_cells(model, ppm):
 def _share_cell(xs, ys, ox, oy):
     a = set(zip(xs.tolist(), ys.tolist(), strict=True))
     return any(c in a for c in zip(ox.tolist(), oy.tolist(), strict=True))
+
+
+@njit(cache=True)
+def _dynamic_models(xs, ys, layer, rx0, ry0, nrx, nry, reg_dyn, dyn_head, ent_block, ent_next,
+                    blk_model):
+    """The model of each moving block listed in the cells (xs, ys) of `layer` (repeats
+    included), the grid's pages walked as Space's kernels walk them."""
+    out = np.empty(64, np.int64)
+    n = 0
+    for k in range(xs.size):
+        x, y = xs[k], ys[k]
+        tx = (x >> RBITS) - rx0
+        ty = (y >> RBITS) - ry0
+        if tx < 0 or ty < 0 or tx >= nrx or ty >= nry:
+            continue
+        page = reg_dyn[ty * nrx + tx]
+        if page < 0:
+            continue
+        e = dyn_head[page, layer, (y & (REGION - 1)) * REGION + (x & (REGION - 1))]
+        while e >= 0:
+            if n == out.size:
+                grown = np.empty(2 * n, np.int64)
+                grown[:n] = out
+                out = grown
+            out[n] = blk_model[ent_block[e]]
+            n += 1
+            e = ent_next[e]
+    return out[:n]
