@@ -67,6 +67,7 @@ def warm():
             world.scan_from(robot.rangers[0], robot.model.pose)
         world.occupancy()
         warm_sensors(world)
+        warm_chargers(world)
         path = os.path.join(tmp, 'on_a_model.world')
         with open(path, 'w') as f:
             f.write(ON_A_MODEL)
@@ -83,6 +84,21 @@ def warm_planner():
     from stage_lite.controllers._fasr2_plans import Plan
     astar([1, 1, 9, 1], 2, 2, (0, 0), (1, 1))
     Plan([0.5], [0.5]).good_direction(0.0, 0.0)
+
+
+def warm_chargers(world):
+    """A charger's look for the moving blocks it touches (energy.py's kernel), on the cells
+    of the first robot's blocks, with the types Energy.touching gives it."""
+    import numpy as np
+
+    from .energy import Energy
+    space = world.space
+    layer = world.updates % 2
+    k = world.robots[0].block_ids[0]
+    cells = slice(space.rc_start[k], space.rc_start[k] + space.rc_len[layer, k])
+    found = set()
+    Energy._dynamic_in(space, np.ascontiguousarray(space.rc_x[layer, cells]),
+                       np.ascontiguousarray(space.rc_y[layer, cells]), layer, found)
 
 
 def warm_sensors(world):
