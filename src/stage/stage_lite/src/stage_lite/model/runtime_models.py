@@ -89,14 +89,14 @@ def set_color(world, model, color):
     """Model::SetColor: (r, g, b, a) in 0..1."""
     model.color = _finite(model, 'color', color)
     if world.cameras.scene is not None:       # the cameras' scene holds the colours
-        world.__dict__['_statics_changed'] = True
+        world._statics_changed = True
 
 
 def redraw_if_changed(world):
     """The static drawings remade (grid, finders, cameras, floor) if a model was made,
     moved or resized since they were last made; before a step."""
-    statics_changed = world.__dict__.pop('_statics_changed', False)
-    trees_changed = world.__dict__.pop('_trees_changed', False)
+    statics_changed, trees_changed = world._statics_changed, world._trees_changed
+    world._statics_changed = world._trees_changed = False
     if not (statics_changed or trees_changed):
         return
     moving = set(np.flatnonzero(world._robot_slot[world._root_of] >= 0).tolist())
@@ -145,7 +145,7 @@ def _list(world, m):
     world.stage_order.append(m)
     world._masks_version = None       # the per-model masks are remade at the next step
     world._model_chains = None
-    tokens = world.__dict__.get('_models_by_token')
+    tokens = world._models_by_token
     if tokens is not None:
         tokens[m.token] = m           # Stage's models_by_name: the latest of a name wins
     space = world.space
@@ -159,7 +159,7 @@ def _list(world, m):
 def _top_counts(world):
     """World's child_type_counts: the top-level models of each type so far (the ground
     model is model:0)."""
-    counts = world.__dict__.get('_top_counts')
+    counts = world._top_counts
     if counts is None:
         counts = world._top_counts = {'model': 1}
         for m in world.models:
@@ -175,7 +175,10 @@ def _redraw(world, model):
         m = stack.pop()
         m.mapped = True
         stack.extend(m.children)
-    world.__dict__['_trees_changed' if _moves(world, model) else '_statics_changed'] = True
+    if _moves(world, model):
+        world._trees_changed = True
+    else:
+        world._statics_changed = True
 
 
 def _moves(world, model):

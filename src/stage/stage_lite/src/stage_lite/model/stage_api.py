@@ -87,7 +87,7 @@ class WorldApi:
     def get_model(self, name):
         """The model whose token (its name, or Stage's made-up `position:0.ranger:1`) is
         name, or None."""
-        tokens = self._world.__dict__.get('_models_by_token')
+        tokens = self._world._models_by_token
         if tokens is None:     # Stage's models_by_name: a later model of a name wins
             tokens = self._world._models_by_token = {m.token: m for m in self._world.models}
         m = tokens.get(name)
@@ -348,15 +348,14 @@ class PositionApi(ModelApi):
 
 
 def world_api(world):
-    api = getattr(world, '_world_api', None)
-    if api is None:
-        api = world._world_api = WorldApi(world)
-    return api
+    if world._world_api is None:
+        world._world_api = WorldApi(world)
+    return world._world_api
 
 
 def api_of(world, model):
     """The one handle of a model (made at first use)."""
-    handles = world.__dict__.setdefault('_handles', {})
+    handles = world._handles
     handle = handles.get(model)
     if handle is None:
         # the sensors' handles build on ModelApi, in a module of their own

@@ -137,6 +137,14 @@ class World(RangerCasts, RobotByRobot):
         self._any_blobfinder = bool(self._kind[Blobfinder].any())
         self._masks_version = None
         self._model_chains = None        # every model's chain, made when first needed
+        # what models made, moved or recoloured at run time leave for the next step
+        # (runtime_models): a static model's drawing, a robot's tree
+        self._statics_changed = False
+        self._trees_changed = False
+        self._models_by_token = None     # Stage's models_by_name, made when first asked
+        self._top_counts = None          # Stage's child_type_counts, made when first needed
+        self._world_api = None           # what controllers see (stage_api): the world
+        self._handles = {}               # and each model, one handle each
         self._root_of = np.array([m.root.index for m in self.models], np.int64)
         # controllers' callbacks of one batch run together (scheduler.py); False: each on
         # its own (the same run: the tests compare the two)
