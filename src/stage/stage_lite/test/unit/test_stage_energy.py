@@ -1,7 +1,7 @@
 """Stage's energy model (energy.py): the power pack's arithmetic, the properties as Stage
 reads them, what models draw, and chargers filling the packs of the models touching them."""
 import pytest
-from stage_lite.model.energy import PowerPack, find_power_pack, position_watts
+from stage_lite.model.energy import PowerPack, _dynamic_models, find_power_pack, position_watts
 from stage_lite.model.world import load_world
 
 ROOM = '''resolution 0.02
@@ -147,3 +147,40 @@ def test_a_finite_charger_gives_what_it_has_and_a_full_pack_takes_no_more(tmp_pa
     for _ in range(120):
         w.step()
     assert named(w, 'near').power_pack.stored == 10000.0
+
+
+def listed_in_python(space, xs, ys, layer):
+    """The moving blocks' models listed in cells (xs, ys): each cell's list walked."""
+    from stage_lite.model.grid import REGION, region_index
+    found = []
+    for x, y in zip(xs.tolist(), ys.tolist(), strict=True):
+        reg = region_index(x, y, space.rx0, space.ry0, space.nrx, space.nry)
+        if reg < 0 or space.reg_dyn[reg] < 0:
+            continue
+        e = space.dyn_head[space.reg_dyn[reg], layer, (y % REGION) * REGION + x % REGION]
+        while e >= 0:
+            found.append(int(space.blk_model[space.ent_block[e]]))
+            e = space.ent_next[e]
+    return found
+
+
+def test_a_charger_along_a_robots_edge_finds_it_in_every_shared_cell(tmp_path):
+    # the robot's lower edge lies on the charger's upper one: some 190 cells list it (the
+    # kernel's list grows past its first 64)
+    long_charger = ('model( name "charger" pose [ 0 0 0 0 ] size [ 4 0.1 0.3 ]'
+                    ' obstacle_return 0 joules -1 give_watts 500 alwayson 1 )\n')
+    long_robot = ('position( name "long" pose [ 0 0.25 0 0 ] size [ 3.8 0.4 0.3 ] joules 100'
+                  ' joules_capacity 10000 take_watts 300 )\n')
+    w = world(tmp_path, long_charger + long_robot + TAKER % ('away', -3, 300), stageros=False)
+    w.step()
+    charger, robot = named(w, 'charger'), named(w, 'long')
+    layer = w.updates % 2
+    xs, ys = w.energy._cells_of(charger, layer)
+    listed = _dynamic_models(xs, ys, layer, w.space.rx0, w.space.ry0, w.space.nrx,
+                             w.space.nry, w.space.reg_dyn, w.space.dyn_head,
+                             w.space.ent_block, w.space.ent_next, w.space.blk_model)
+    assert sorted(listed.tolist()) == sorted(listed_in_python(w.space, xs, ys, layer))
+    assert len(listed) > 64 and set(listed.tolist()) == {robot.index}
+    assert w.energy.touching(charger) == [robot]
+    assert robot.power_pack.stored == pytest.approx(100.0 + 300 * 0.1)
+    assert named(w, 'away').power_pack.stored == 100.0
