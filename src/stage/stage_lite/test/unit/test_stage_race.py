@@ -42,6 +42,40 @@ def test_a_ranger_is_stale_when_the_workers_reach_it_before_its_robots_move():
     assert early.tolist() == [True, True, False]
 
 
+def numpy_move_starts(move_order, move_cost):
+    cost = move_cost[move_order]
+    start = np.empty(len(move_cost), np.float64)
+    start[move_order] = np.cumsum(cost) - cost
+    return start
+
+
+def numpy_early_casts(queue_order, queue, cost, robot, move_start):
+    turn = np.zeros(int(max(queue_order.max(), queue.max(initial=0))) + 1, np.int64)
+    turn[queue_order] = np.arange(len(queue_order))
+    order = np.argsort(turn[queue], kind='stable')
+    start = np.empty(len(queue), np.float64)
+    start[order] = np.cumsum(cost[order]) - cost[order]
+    return start < move_start[robot]
+
+
+def test_the_clocks_equal_numpys_running_sums_to_the_bit():
+    # the kernels against the model's first, numpy form: the same starts, bit for bit, and
+    # the same casts, queues outside the order (taken with the first) included
+    rng = np.random.default_rng(3)
+    for _ in range(300):
+        robots, rangers, threads = rng.integers(1, 40), rng.integers(0, 80), rng.integers(2, 8)
+        move_order = rng.permutation(robots)
+        move_cost = rng.choice([0.0, 2.0, 22.0, 0.1, 1e-17, 7.3], robots)
+        starts = move_starts(move_order, move_cost)
+        assert starts.tobytes() == numpy_move_starts(move_order, move_cost).tobytes()
+        queue_order = rng.permutation(threads) + 1
+        queue = rng.integers(0, threads + 2, rangers)
+        cost = rng.choice([1.0, 12.0, 180.0, 0.3, 1e-16], rangers)
+        robot = rng.integers(0, robots, rangers)
+        assert (early_casts(queue_order, queue, cost, robot, starts).tolist()
+                == numpy_early_casts(queue_order, queue, cost, robot, starts).tolist())
+
+
 def test_a_still_robot_costs_the_main_thread_nothing():
     race = WorkerRace(2, 1, slot_beams=[1, 1], slot_robot=[0, 1], robot_blocks=[1, 1],
                       move_order=[0, 1])

@@ -27,6 +27,8 @@ part from each other).
 """
 import numpy as np
 
+from .jit import njit
+
 #: a move's cost per block of the robot's body, in beams (the real Stage's ratio, median of
 #: cave, hospital, pioneer_flocking, SFU and fasr: 1.2, 2.2, 2.3, 3.0, 1.9)
 MOVE_BEAMS_PER_BLOCK = 2.0
@@ -37,22 +39,50 @@ _STREAM = 0x5ace
 def move_starts(move_order, move_cost):
     """Per robot, the main thread's clock when its move starts: the moves in `move_order`
     (robot indices), each costing move_cost[robot]."""
-    cost = move_cost[move_order]
     start = np.empty(len(move_cost), np.float64)
-    start[move_order] = np.cumsum(cost) - cost
+    _move_starts(np.ascontiguousarray(move_order, np.int64),
+                 np.ascontiguousarray(move_cost, np.float64), start)
     return start
 
 
 def early_casts(queue_order, queue, cost, robot, move_start):
     """Per ranger (its queue, its cost, its robot; in update order within each queue),
     whether it starts before its robot's move: the workers take the queues in
-    `queue_order` (queue numbers), one after another, from clock 0."""
-    turn = np.zeros(int(max(queue_order.max(), queue.max(initial=0))) + 1, np.int64)
-    turn[queue_order] = np.arange(len(queue_order))
-    order = np.argsort(turn[queue], kind='stable')
-    start = np.empty(len(queue), np.float64)
-    start[order] = np.cumsum(cost[order]) - cost[order]
-    return start < move_start[robot]
+    `queue_order` (queue numbers), one after another, from clock 0 (a queue not in it, with
+    the first)."""
+    arrays = [np.ascontiguousarray(a, t) for a, t in ((queue_order, np.int64), (queue, np.int64),
+              (cost, np.float64), (robot, np.int64), (move_start, np.float64))]
+    early = np.empty(len(arrays[1]), np.bool_)
+    _early_casts(*arrays, early)
+    return early
+
+
+# Both clocks as a running sum, each start that sum less its own cost (numpy's cumsum less
+# the cost, as the model was first written: the same floats, so the same casts).
+
+@njit(cache=True)
+def _move_starts(move_order, move_cost, start):
+    clock = 0.0
+    for k in range(move_order.shape[0]):
+        r = move_order[k]
+        clock += move_cost[r]
+        start[r] = clock - move_cost[r]
+
+
+@njit(cache=True)
+def _early_casts(queue_order, queue, cost, robot, move_start, early):
+    most = queue_order.max()
+    for k in range(queue.shape[0]):
+        most = max(most, queue[k])
+    turn = np.zeros(most + 1, np.int64)
+    for t in range(queue_order.shape[0]):
+        turn[queue_order[t]] = t
+    clock = 0.0
+    for t in range(queue_order.shape[0]):
+        for k in range(queue.shape[0]):
+            if turn[queue[k]] == t:
+                clock += cost[k]
+                early[k] = clock - cost[k] < move_start[robot[k]]
 
 
 class WorkerRace:

@@ -76,6 +76,18 @@ def warm():
         for _ in range(2):
             world.step()
     warm_planner()
+    warm_race()
+
+
+def warm_race():
+    """The worker-thread race's clocks (race.py's kernels), as a threaded world's step
+    calls them."""
+    import numpy as np
+
+    from .race import WorkerRace
+    WorkerRace(2, 1, slot_beams=[1, 1], slot_robot=[0, 1], robot_blocks=[1, 1],
+               move_order=[0, 1]).stale(np.array([1, 2]), np.array([0, 1]),
+                                        np.array([True, True]))
 
 
 def warm_planner():
