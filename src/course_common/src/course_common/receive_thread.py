@@ -24,13 +24,15 @@ class ReceiveThread:
     that raises is dropped too, and ``on_error(reader, error)`` is told. ``remove(sock)``
     drops a socket: call it before closing the socket, so that its descriptor number is not
     reused while still waited on. Both may be called from any thread; they take effect
-    before the thread next waits.
+    before the thread next waits: bytes that come after a socket's remove() are not read,
+    and a reader's own remove() of another socket holds for the rest of its round.
     """
 
     def __init__(self, name, on_error):
         self._on_error = on_error
         self._selector = selectors.DefaultSelector()
         self._changes = []              # ('add', sock, reader, first) / ('remove', sock)
+        self._removed_now = set()       # sockets a reader removed in this round
         self._lock = threading.Lock()
         self._wake_read, self._wake_write = socket.socketpair()
         self._wake_read.setblocking(False)
@@ -43,6 +45,8 @@ class ReceiveThread:
         self._change(('add', sock, reader, first))
 
     def remove(self, sock):
+        if threading.current_thread() is self._thread:
+            self._removed_now.add(sock)     # a reader's call: not read later in this round
         self._change(('remove', sock))
 
     def _change(self, change):
@@ -74,6 +78,7 @@ class ReceiveThread:
     def _run(self):
         while True:
             ready = self._selector.select()
+            self._removed_now.clear()
             # Changes first: a socket removed before its bytes came must not be read, even
             # when epoll lists its bytes ahead of the wake-up that carries the removal.
             if any(key.data is None for key, _ in ready):
@@ -84,6 +89,8 @@ class ReceiveThread:
 
     def _still_waited_on(self, key):
         """False once key's socket was dropped (or dropped and added again) in this round."""
+        if key.fileobj in self._removed_now:
+            return False
         try:
             return self._selector.get_key(key.fileobj) is key
         except (KeyError, ValueError):              # dropped, or closed since

@@ -122,6 +122,28 @@ def test_socket_removed_after_its_bytes_came_is_not_read(pairs):
     assert reader.calls == 0 and b.recv(10) == b'late'
 
 
+def test_a_socket_a_reader_removes_is_not_read_later_in_the_same_round(pairs):
+    # both sockets have bytes when the thread first waits on them; each reader removes the
+    # other: whichever runs first, the other is not read in that round nor later
+    receiver = ReceiveThread('receiver_remove_each_other', lambda r, e: None)
+    (a1, b1), (a2, b2) = pairs(), pairs()
+    calls = []
+
+    def reader(own, other, name):
+        def read():
+            own.recv(10)
+            calls.append(name)
+            receiver.remove(other)
+            return True
+        return read
+    a1.sendall(b'x')
+    a2.sendall(b'y')
+    receiver.add(b1, reader(b1, b2, 'b1'))
+    receiver.add(b2, reader(b2, b1, 'b2'))
+    serve_a_later_socket(receiver, pairs)
+    assert len(calls) == 1
+
+
 def test_a_failing_reader_is_reported_and_the_others_go_on(pairs):
     errors = []
     receiver = ReceiveThread('receiver_fail', lambda r, e: errors.append((r, e)))
