@@ -45,10 +45,7 @@ class FrameStream:
             self._tail = self._tail[sent:]
             if self._tail:
                 return False
-        try:
-            sent = sock.send(frame, socket.MSG_DONTWAIT)
-        except (BlockingIOError, InterruptedError):
-            return False
+        sent = self._send_now(sock, frame)
         if sent == 0:
             return False
         if sent < len(frame):
