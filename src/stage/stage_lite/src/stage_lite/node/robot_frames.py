@@ -66,10 +66,10 @@ class RobotFrames:
         stamp = wire.HEADER_STAMP.pack(seq, secs, nsecs)
         if odom or tf:
             odom_pose = state.est[:, XY_YAW]
+            odom_quaternions = wire.yaw_quaternions(odom_pose[:, 2])
         if odom:
             velocity = state.velocity[:, XY_YAW]
-            poses, twists = wire.odometry_rows(odom_pose, velocity,
-                                               wire.yaw_quaternions(odom_pose[:, 2]))
+            poses, twists = wire.odometry_rows(odom_pose, velocity, odom_quaternions)
             self._odom.fill('stamp', stamp)
             self._odom.write('pose', poses)
             self._odom.write('twist', twists)
@@ -85,9 +85,8 @@ class RobotFrames:
             self._scans.write('ranges', _floats(v.ranges for v in self._all_views))
             self._scans.write('intensities', _floats(v.intensities for v in self._all_views))
         if tf:
-            moving = np.zeros((len(odom_pose), 7), '<f8')
-            moving[:, 0:2] = odom_pose[:, 0:2]
-            moving[:, 3:7] = wire.transform_quaternions(odom_pose[:, 2])
+            # stageros's tf::Transform: the odometry's rotation, through the matrix and back
+            moving = wire.pose_rows(odom_pose, wire.matrix_round_trips(odom_quaternions))
             self._tf.fill('stamp', wire.HEADER_STAMP.pack(0, secs, nsecs))
             self._tf.write('moving', moving)
 

@@ -260,11 +260,26 @@ def yaw_quaternions(yaws):
     return out
 
 
+def matrix_round_trips(quaternions):
+    """matrix_round_trip of each (n, 4) quaternion, bit for bit."""
+    quaternions = np.ascontiguousarray(quaternions, np.float64)
+    out = np.empty((len(quaternions), 4))
+    _matrix_round_trips(quaternions, out)
+    return out
+
+
 def transform_quaternions(yaws):
     """transform_quaternion of each yaw: (n, 4) float64, bit for bit."""
-    out = np.empty((np.size(yaws), 4))
-    _matrix_round_trips(yaw_quaternions(yaws), out)
-    return out
+    return matrix_round_trips(yaw_quaternions(yaws))
+
+
+def pose_rows(poses, quaternions):
+    """(n, 7) rows x, y, z = 0 and the quaternion: an Odometry's pose, a transform's
+    translation and rotation; poses (n, 2+) x, y first."""
+    rows = np.zeros((len(poses), 7), '<f8')
+    rows[:, 0:2] = poses[:, 0:2]
+    rows[:, 3:7] = quaternions
+    return rows
 
 
 def odometry_parts(frame_id, child_frame_id):
@@ -277,14 +292,10 @@ def odometry_parts(frame_id, child_frame_id):
 def odometry_rows(poses, twists, quaternions):
     """(pose rows, twist rows) for odometry_parts' fields: poses (n, 3) x, y, yaw; twists
     (n, 3) vx, vy, wz; quaternions (n, 4) of the yaws (yaw_ or transform_quaternions)."""
-    n = len(poses)
-    pose_rows = np.zeros((n, 7), '<f8')
-    pose_rows[:, 0:2] = poses[:, 0:2]
-    pose_rows[:, 3:7] = quaternions
-    twist_rows = np.zeros((n, 6), '<f8')
+    twist_rows = np.zeros((len(poses), 6), '<f8')
     twist_rows[:, 0:2] = twists[:, 0:2]
     twist_rows[:, 5] = twists[:, 2]
-    return pose_rows, twist_rows
+    return pose_rows(poses, quaternions), twist_rows
 
 
 def scan_parts(template):
