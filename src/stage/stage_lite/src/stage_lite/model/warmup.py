@@ -100,7 +100,7 @@ def warm_planner():
 
 def warm_chargers(world):
     """A charger's look for the moving blocks it touches (energy.py's kernel), on the cells
-    of the first robot's blocks, with the types Energy.touching gives it."""
+    of the first robot's first block, with the types Energy.touching gives it."""
     import numpy as np
 
     from .energy import Energy
