@@ -89,11 +89,32 @@ def region_index(gx, gy, rx0, ry0, nrx, nry):
 # ---- moving bodies: Stage's Map / UnMap / TestCollision ----------------------------------
 
 @njit(cache=True)
+def entry_of(layer, k, rc_x):
+    """The entry of a drawing's cell rc_x[layer, k]: one per cell a block's drawing can
+    take, in each layer."""
+    return layer * rc_x.shape[1] + k
+
+
+@njit(cache=True)
+def hold_page(reg, reg_dyn, dyn_head, free_state, page_free):
+    """The page of region reg's moving bodies, taken from the pool if it has none (the pool
+    must have one)."""
+    page = reg_dyn[reg]
+    if page < 0:
+        free_state[0] -= 1
+        page = page_free[free_state[0]]
+        dyn_head[page, 0, :] = -1
+        dyn_head[page, 1, :] = -1
+        reg_dyn[reg] = page
+    return page
+
+
+@njit(cache=True)
 def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
-                reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, ent_free,
-                page_free):
+                reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, page_free):
     """Block::UnMap: out of every cell it was drawn into (all its entries in each), one
-    count off the region per drawing."""
+    count off the region per drawing; a region's page back to the pool when its last
+    entry goes."""
     s = rc_start[b]
     for k in range(rc_len[layer, b]):
         reg = region_index(rc_x[layer, s + k], rc_y[layer, s + k], rx0, ry0, nrx, nry)
@@ -108,8 +129,6 @@ def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_
                     dyn_head[page, layer, cell] = nxt
                 else:
                     ent_next[prev] = nxt
-                ent_next[e] = ent_free[0]
-                ent_free[0] = e
             else:
                 prev = e
             e = nxt
@@ -125,10 +144,12 @@ def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_
 @njit(cache=True)
 def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
               reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, ent_seq,
-              free_state, ent_free, page_free, test, reg_static, st_coll, blk_class, blk_model,
+              free_state, page_free, test, reg_static, st_coll, blk_class, blk_model,
               blk_zmin, blk_zmax, model_root, model_obstacle):
     """Block::Map: the block's outline cells at the given pixel vertices, each an entry at
-    the end of its cell's list. The region table must hold them (World keeps it so). With
+    the end of its cell's list. The region table must hold them (World keeps it so). A
+    drawing's k-th cell is entry k of its layer's row (entry_of): each block owns its
+    entries, so that robots far apart can be drawn at once (motion.move_apart). With
     `test`, also the block's part of collides() on the way (its cells, static first, then
     each list as the walk to its end reads it): its robot's own entries never count there,
     and nothing else changes while its robot is drawn, so this is what collides() would say
@@ -147,21 +168,14 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
         gx = rc_x[layer, k]
         gy = rc_y[layer, k]
         reg = region_index(gx, gy, rx0, ry0, nrx, nry)
-        page = reg_dyn[reg]
-        if page < 0:
-            free_state[0] -= 1
-            page = page_free[free_state[0]]
-            dyn_head[page, 0, :] = -1
-            dyn_head[page, 1, :] = -1
-            reg_dyn[reg] = page
+        page = hold_page(reg, reg_dyn, dyn_head, free_state, page_free)
         cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
         if testing:
             spage = reg_static[reg]
             if spage >= 0 and (st_coll[spage, cell] & bit) != 0:
                 hit = STATIC
                 testing = False
-        e = ent_free[0]
-        ent_free[0] = ent_next[e]
+        e = entry_of(layer, k, rc_x)
         ent_block[e] = b
         ent_seq[e] = seq
         ent_next[e] = -1
@@ -229,7 +243,7 @@ def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, re
 @njit(cache=True)
 def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x,
            rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block,
-           ent_next, ent_seq, free_state, ent_free, page_free, test, reg_static, st_coll,
+           ent_next, ent_seq, free_state, page_free, test, reg_static, st_coll,
            blk_class, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """UnMap then Map of each block at its model's body pose (x, y, cos, sin): Stage's
     LocalToPixels, floor((x + px cos - py sin) * ppm), in Stage's order of operations. With
@@ -246,12 +260,11 @@ def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_l
             vx[j] = math.floor((gx + px * cosa - py * sina) * ppm)
             vy[j] = math.floor((gy + px * sina + py * cosa) * ppm)
         unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
-                    reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, ent_free,
-                    page_free)
+                    reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, page_free)
         testing = test and hit == NO_HIT     # (the first hit is the answer)
         found = map_block(b, layer, vx[:n], vy[:n], seqs[i], rc_start, rc_len, rc_x, rc_y,
                           rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head,
-                          ent_block, ent_next, ent_seq, free_state, ent_free, page_free,
+                          ent_block, ent_next, ent_seq, free_state, page_free,
                           testing, reg_static, st_coll, blk_class, blk_model,
                           blk_zmin, blk_zmax, model_root, model_obstacle)
         if hit == NO_HIT:
@@ -262,21 +275,21 @@ def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_l
 @njit(cache=True)
 def move(blocks, new_poses, old_poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start,
          rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
-         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free,
-         page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
+         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state, page_free,
+         blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """ModelPosition::Move's grid work: the robot's blocks drawn in `layer` at their new
     poses and tested as they are drawn (redraw's test: collides()'s answer, without a
     second walk of the cells); on a collision drawn back at the old ones (seqs: two rows,
     the drawing numbers of each). Returns collides()'s answer."""
     hit = redraw(blocks, new_poses, seqs[0], layer, ppm, pts, pts_off, vx, vy, rc_start,
                  rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
-                 dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free, page_free, True,
+                 dyn_head, ent_block, ent_next, ent_seq, free_state, page_free, True,
                  reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
                  model_obstacle)
     if hit != NO_HIT:
         redraw(blocks, old_poses, seqs[1], layer, ppm, pts, pts_off, vx, vy, rc_start,
                rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
-               dyn_head, ent_block, ent_next, ent_seq, free_state, ent_free, page_free, False,
+               dyn_head, ent_block, ent_next, ent_seq, free_state, page_free, False,
                reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
                model_obstacle)
     return hit

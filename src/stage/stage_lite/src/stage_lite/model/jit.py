@@ -14,6 +14,7 @@ import os
 os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
 
 try:
+    from numba import get_num_threads as numba_threads
     from numba import njit, prange
 except ImportError:  # pragma: no cover - python3-numba is a dependency
     prange = range
@@ -21,4 +22,7 @@ except ImportError:  # pragma: no cover - python3-numba is a dependency
     def njit(*args, **kwargs):
         return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
-__all__ = ['njit', 'prange']
+    def numba_threads():
+        return 1
+
+__all__ = ['njit', 'numba_threads', 'prange']

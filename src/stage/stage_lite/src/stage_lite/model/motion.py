@@ -8,19 +8,28 @@ Each is the World's per-robot Python (world.py) operation for operation: pose su
 Stage's order (pose.py), cos and sin from the same C library, so every double is the same.
 The World uses them when every robot is a top-level model (its pose is its world pose);
 a robot on another model moves the World's own way.
+
+Stage moves its robots one after another in its main thread. Two robots' moves commute when
+neither can touch a cell the other's touches, so with many robots the moves are split
+(plan_apart) into two sides of a line across the grid, moved at once in two threads
+(move_apart), and a rest moved after them in turn: the same grid, poses and stalls as in
+turn, on every machine.
 """
 import math
 
 import numpy as np
 
 from . import grid
-from .jit import njit
+from .jit import njit, numba_threads, prange
 from .robot_state import MODE_CODE
 
 VELOCITY = MODE_CODE['velocity']
 ACCELERATION = MODE_CODE['acceleration']
 DIFF, OMNI, CAR = 0, 1, 2
 DRIVES = {'diff': DIFF, 'omni': OMNI, 'car': CAR}
+#: From this many bodies drawn in a step, the robots far apart are moved two at a time
+#: (plan_apart; below it, planning and starting the threads cost more than they save).
+APART_BODIES = 64
 
 
 @njit(cache=True)
@@ -210,66 +219,344 @@ def _outside(rows, nb, blocks, blk_radius, ppm, rx0, ry0, nrx, nry, box):
 
 
 @njit(cache=True)
-def move_robots(first, subscribed, velocity, pose, stalled, twist, dt, layer, r_bm_off,
-                bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks, new_rows,
-                old_rows, seqs, seq, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
-                rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
-                reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
-                free_state, ent_free, page_free, blk_model, blk_zmin, blk_zmax, model_root,
-                model_obstacle):
-    """World.step's moves from robot `first` on, in order (World._move of each subscribed
-    robot, then its ground truth's twist). Returns -1 when done, or the robot whose move
-    needs more free pages (Space.pages_short) or a larger region table (box: the cells it
-    must hold); nothing of its move done yet."""
-    for i in range(first, pose.shape[0]):
-        ox, oy, oa = pose[i, 0], pose[i, 1], pose[i, 3]
-        vxs, vys, vzs, vas = velocity[i, 0], velocity[i, 1], velocity[i, 2], velocity[i, 3]
-        if subscribed[i] and (vxs != 0.0 or vys != 0.0 or vzs != 0.0 or vas != 0.0):
-            sx, sy, sz, sa = pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3]
-            b0 = r_blk_off[i]
-            nb = r_blk_off[i + 1] - b0
+def _draws(i, subscribed, velocity, r_blk_off):
+    """Whether robot i's move this step draws it in the grid: subscribed, with a speed,
+    with blocks."""
+    return (subscribed[i] and r_blk_off[i + 1] > r_blk_off[i]
+            and (velocity[i, 0] != 0.0 or velocity[i, 1] != 0.0 or velocity[i, 2] != 0.0
+                 or velocity[i, 3] != 0.0))
+
+
+@njit(cache=True)
+def seq_bases(subscribed, velocity, r_bm_off, r_blk_off, seq, bases):
+    """bases[i]: the drawing number robot i's move counts on from, the moves taken in order,
+    each move that draws taking two per body of the robot (its tried drawing's, then its
+    drawing back's, whether it is drawn back or not). Returns the last number taken."""
+    for i in range(bases.shape[0]):
+        bases[i] = seq
+        if _draws(i, subscribed, velocity, r_blk_off):
+            seq += 2 * (r_bm_off[i + 1] - r_bm_off[i])
+    return seq
+
+
+@njit(cache=True)
+def _tried(pose, velocity, i, dt):
+    """Robot i's pose after a step at its velocity (the move it tries)."""
+    return pose_add(pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3], velocity[i, 0] * dt,
+                    velocity[i, 1] * dt, velocity[i, 2] * dt, normalize(velocity[i, 3] * dt))
+
+
+@njit(cache=True)
+def _move_one(i, base, check, subscribed, velocity, pose, stalled, twist, dt, layer, r_bm_off,
+              bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks, new_rows,
+              old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy, rc_start,
+              rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+              reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
+              free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
+    """World._move of robot i, then its ground truth's twist; its drawings numbered from
+    `base` (seq_bases). With `check`, first whether the move may need more free pages than
+    the pool has or a larger region table (box: the cells it must hold): then nothing is
+    done and the answer is False."""
+    ox, oy, oa = pose[i, 0], pose[i, 1], pose[i, 3]
+    if subscribed[i] and (velocity[i, 0] != 0.0 or velocity[i, 1] != 0.0
+                          or velocity[i, 2] != 0.0 or velocity[i, 3] != 0.0):
+        sx, sy, sz, sa = pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3]
+        b0 = r_blk_off[i]
+        nb = r_blk_off[i + 1] - b0
+        if nb == 0:
+            pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = _tried(pose, velocity, i, dt)
+            stalled[i] = False
+        else:
             _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd,
                        old_rows)
-            nx, ny, nz, na = pose_add(sx, sy, sz, sa, vxs * dt, vys * dt, vzs * dt,
-                                      normalize(vas * dt))
-            pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = nx, ny, nz, na
-            if nb == 0:
-                stalled[i] = False
-            else:
-                _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd,
-                           new_rows)
-                blocks = r_blocks[b0:b0 + nb]
+            pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = _tried(pose, velocity, i, dt)
+            _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd,
+                       new_rows)
+            blocks = r_blocks[b0:b0 + nb]
+            if check:
                 need = 0
                 for k in range(nb):
                     need += blk_pages[blocks[k]]
-                if need > free_state[0]:
+                if need > free_state[0] or _outside(new_rows, nb, blocks, blk_radius, ppm,
+                                                    rx0, ry0, nrx, nry, box):
                     pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = sx, sy, sz, sa
-                    return i
-                if _outside(new_rows, nb, blocks, blk_radius, ppm, rx0, ry0, nrx, nry, box):
-                    pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = sx, sy, sz, sa
-                    return i
-                for row in range(2):
-                    n = 0
-                    for b in range(r_bm_off[i], r_bm_off[i + 1]):
-                        seq[0] += 1
-                        for _k in range(bm_nblk[b]):
-                            seqs[row, n] = seq[0]
-                            n += 1
-                hit = grid.move(blocks, new_rows[:nb], old_rows[:nb], seqs[:, :nb], layer,
-                                ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x, rc_y, rx0,
-                                ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
-                                st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
-                                free_state, ent_free, page_free, blk_model, blk_zmin,
-                                blk_zmax, model_root, model_obstacle)
-                if hit != grid.NO_HIT:
-                    pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = sx, sy, sz, sa
-                    stalled[i] = True
-                else:
-                    stalled[i] = False
-        twist[i, 0] = (pose[i, 0] - ox) / dt
-        twist[i, 1] = (pose[i, 1] - oy) / dt
-        twist[i, 2] = normalize(pose[i, 3] - oa) / dt
+                    return False
+            bodies = r_bm_off[i + 1] - r_bm_off[i]
+            for row in range(2):
+                n = 0
+                seq = base + row * bodies
+                for b in range(r_bm_off[i], r_bm_off[i + 1]):
+                    seq += 1
+                    for _k in range(bm_nblk[b]):
+                        seqs[row, n] = seq
+                        n += 1
+            hit = grid.move(blocks, new_rows[:nb], old_rows[:nb], seqs[:, :nb], layer, ppm,
+                            pts, pts_off, vx, vy, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx,
+                            nry, reg_count, reg_static, reg_dyn, reg_dyncount, st_coll,
+                            blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state,
+                            page_free, blk_model, blk_zmin, blk_zmax, model_root,
+                            model_obstacle)
+            if hit != grid.NO_HIT:
+                pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = sx, sy, sz, sa
+                stalled[i] = True
+            else:
+                stalled[i] = False
+    twist[i, 0] = (pose[i, 0] - ox) / dt
+    twist[i, 1] = (pose[i, 1] - oy) / dt
+    twist[i, 2] = normalize(pose[i, 3] - oa) / dt
+    return True
+
+
+@njit(cache=True)
+def move_robots(order, first, bases, subscribed, velocity, pose, stalled, twist, dt, layer,
+                r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks,
+                new_rows, old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
+                rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
+                reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next,
+                ent_seq, free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
+                model_obstacle):
+    """World.step's moves of the robots order[first:], in turn (_move_one). Returns -1
+    when done, or the place in `order` of the robot whose move needs more free pages
+    (Space.pages_short) or a larger region table (box: the cells it must hold); nothing of
+    its move done yet."""
+    for j in range(first, order.shape[0]):
+        i = order[j]
+        if not _move_one(i, bases[i], True, subscribed, velocity, pose, stalled, twist, dt,
+                         layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd,
+                         r_blk_off, r_blocks, new_rows, old_rows, seqs, box, blk_radius,
+                         blk_pages, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x, rc_y,
+                         rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
+                         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
+                         free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
+                         model_obstacle):
+            return j
     return -1
+
+
+@njit(parallel=True, cache=True)
+def move_apart(sides, side_len, bases, subscribed, velocity, pose, stalled, twist, dt, layer,
+               r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks,
+               new_rows, old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
+               rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
+               reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next,
+               ent_seq, free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
+               model_obstacle):
+    """The moves of two sides (plan_apart's: robots whose moves touch regions of the grid
+    no robot of the other side touches) at once, each side's in turn in its own thread,
+    with its own scratch rows (new_rows[t], ...). plan_apart has made the table hold them
+    and given each of their regions a page that stays."""
+    for t in prange(2):
+        for j in range(side_len[t]):
+            i = sides[t, j]
+            _move_one(i, bases[i], False, subscribed, velocity, pose, stalled, twist, dt,
+                      layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off,
+                      r_blocks, new_rows[t], old_rows[t], seqs[t], box[t], blk_radius,
+                      blk_pages, ppm, pts, pts_off, vx[t], vy[t], rc_start, rc_len, rc_x, rc_y,
+                      rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
+                      st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state,
+                      page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle)
+
+
+@njit(cache=True)
+def _cell_box(i, pose, velocity, dt, layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack,
+              el_zadd, r_blk_off, r_blocks, rows, blk_radius, ppm, rc_start, rc_len, rc_x, rc_y,
+              out):
+    """out: the cells (x0, y0, x1, y1) robot i's move may touch: its drawing in `layer`
+    (erased), at its pose now and at the pose it tries (Space.hold's bound of a drawing)."""
+    x0 = y0 = 1 << 62
+    x1 = y1 = -(1 << 62)
+    for k in range(r_blk_off[i], r_blk_off[i + 1]):
+        b = r_blocks[k]
+        s = rc_start[b]
+        for c in range(s, s + rc_len[layer, b]):
+            x0 = min(x0, rc_x[layer, c])
+            x1 = max(x1, rc_x[layer, c])
+            y0 = min(y0, rc_y[layer, c])
+            y1 = max(y1, rc_y[layer, c])
+    keep = (pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3])
+    nb = r_blk_off[i + 1] - r_blk_off[i]
+    for tried in range(2):
+        if tried:
+            pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = _tried(pose, velocity, i, dt)
+        _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, rows)
+        for k in range(nb):
+            r = blk_radius[r_blocks[r_blk_off[i] + k]] * ppm + 2
+            x0 = min(x0, int(math.floor(rows[k, 0] * ppm - r)))
+            x1 = max(x1, int(math.ceil(rows[k, 0] * ppm + r)))
+            y0 = min(y0, int(math.floor(rows[k, 1] * ppm - r)))
+            y1 = max(y1, int(math.ceil(rows[k, 1] * ppm + r)))
+    pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = keep
+    out[0], out[1], out[2], out[3] = x0, y0, x1, y1
+
+
+@njit(cache=True)
+def _sides(cells, boxes, draws, weight, axis, split, head, entry_robot, entry_next, touched,
+           rx0, ry0, nrx, side):
+    """side[i] for a split of the regions at `split` along `axis` (0: x, 1: y): 0 for a
+    robot whose regions (boxes) are all below it, 1 all at or above it, 2 for the rest:
+    robots across it, robots whose moves do not draw (draws[i] False), and, in order, a
+    robot whose cells may meet those of one of the rest before it (it must move after
+    that one). head (per region, -1), entry_robot, entry_next: the rest's robots by
+    region, left empty. Returns the weights of sides 0 and 1 and of the rest's robots
+    that draw."""
+    w0 = w1 = w2 = 0
+    entries = 0
+    n_touched = 0
+    for i in range(cells.shape[0]):
+        if not draws[i]:
+            side[i] = 2
+            continue
+        if boxes[i, axis + 2] < split:
+            side[i] = 0
+        elif boxes[i, axis] >= split:
+            side[i] = 1
+        else:
+            side[i] = 2
+        for ty in range(boxes[i, 1] - ry0, boxes[i, 3] - ry0 + 1):
+            for tx in range(boxes[i, 0] - rx0, boxes[i, 2] - rx0 + 1):
+                reg = ty * nrx + tx
+                e = head[reg]
+                while e >= 0 and side[i] < 2:
+                    s = entry_robot[e]
+                    if (cells[s, 0] <= cells[i, 2] and cells[i, 0] <= cells[s, 2]
+                            and cells[s, 1] <= cells[i, 3] and cells[i, 1] <= cells[s, 3]):
+                        side[i] = 2
+                    e = entry_next[e]
+        if side[i] == 2:
+            for ty in range(boxes[i, 1] - ry0, boxes[i, 3] - ry0 + 1):
+                for tx in range(boxes[i, 0] - rx0, boxes[i, 2] - rx0 + 1):
+                    reg = ty * nrx + tx
+                    if head[reg] < 0:
+                        touched[n_touched] = reg
+                        n_touched += 1
+                    entry_robot[entries] = i
+                    entry_next[entries] = head[reg]
+                    head[reg] = entries
+                    entries += 1
+            w2 += weight[i]
+        elif side[i] == 0:
+            w0 += weight[i]
+        else:
+            w1 += weight[i]
+    for j in range(n_touched):
+        head[touched[j]] = -1
+    return w0, w1, w2
+
+
+@njit(cache=True)
+def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, el_pose,
+               el_stack, el_zadd, r_blk_off, r_blocks, rows, blk_radius, ppm, rc_start, rc_len,
+               rc_x, rc_y, rx0, ry0, nrx, nry, reg_dyn, reg_dyncount, dyn_head, free_state,
+               page_free, sides, side_len, rest, pinned):
+    """Splits a step's moves for move_apart: the robots whose moves draw (_draws), each
+    with the regions its move may touch, on two sides of a line of regions (_sides; of the
+    lines across x and across y at a few quantiles of the robots' places, the one that
+    leaves the least to do: the larger side's blocks and the rest's), the rest to be moved
+    after the sides, in order. Moves of robots that share no region commute (each reads
+    and writes only the cells of its regions; a block's entries are its own,
+    grid.entry_of), so this gives World._move's grid, poses and stalls. The sides' regions
+    get a page each and a count that keeps it through the sides' moves (pinned: their
+    list, up to a -1; undo with unpin). Returns the robots in rest (robots of `rest`, in
+    order), -1 when a move may leave the table or no split halves the work (then nothing
+    is done: move them in turn), or -2 - pages when the pool needs that many more pages."""
+    n = pose.shape[0]
+    cells = np.zeros((n, 4), np.int64)
+    boxes = np.zeros((n, 4), np.int64)
+    draws = np.zeros(n, np.bool_)
+    weight = np.zeros(n, np.int64)
+    ends = np.empty((2, n), np.int64)
+    m = 0
+    total = 0
+    area = 0
+    for i in range(n):
+        if _draws(i, subscribed, velocity, r_blk_off):
+            _cell_box(i, pose, velocity, dt, layer, r_bm_off, bm_nblk, t_off, el_pose,
+                      el_stack, el_zadd, r_blk_off, r_blocks, rows, blk_radius, ppm, rc_start,
+                      rc_len, rc_x, rc_y, cells[i])
+            for k in range(4):
+                boxes[i, k] = cells[i, k] >> grid.RBITS
+            if (boxes[i, 0] < rx0 or boxes[i, 1] < ry0 or boxes[i, 2] >= rx0 + nrx
+                    or boxes[i, 3] >= ry0 + nry):
+                return -1
+            draws[i] = True
+            weight[i] = r_blk_off[i + 1] - r_blk_off[i]
+            total += weight[i]
+            area += (boxes[i, 2] - boxes[i, 0] + 1) * (boxes[i, 3] - boxes[i, 1] + 1)
+            ends[0, m] = boxes[i, 2]
+            ends[1, m] = boxes[i, 3]
+            m += 1
+    if m < 2:
+        return -1
+    head = np.full(nrx * nry, -1, np.int64)
+    entry_robot = np.empty(area, np.int64)
+    entry_next = np.empty(area, np.int64)
+    touched = np.empty(area, np.int64)
+    side = np.empty(n, np.int64)
+    best = total
+    best_axis = best_split = -1
+    ordered = np.empty((2, m), np.int64)
+    ordered[0] = np.sort(ends[0, :m])
+    ordered[1] = np.sort(ends[1, :m])
+    for q in (5, 4, 6, 3, 7):     # past the median robot across x and y, then other tenths
+        for axis in range(2):
+            split = ordered[axis, m * q // 10] + 1
+            w0, w1, w2 = _sides(cells, boxes, draws, weight, axis, split, head, entry_robot,
+                                entry_next, touched, rx0, ry0, nrx, side)
+            cost = max(w0, w1) + w2
+            if cost < best:
+                best, best_axis, best_split = cost, axis, split
+        if 20 * best <= 11 * total:       # within a tenth of halving it: good enough
+            break
+    if 10 * best > 7 * total:      # not worth two threads
+        return -1
+    _sides(cells, boxes, draws, weight, best_axis, best_split, head, entry_robot, entry_next,
+           touched, rx0, ry0, nrx, side)
+    mask = np.zeros(nrx * nry, np.bool_)
+    count = 0
+    missing = 0
+    for i in range(n):
+        if side[i] < 2:
+            for ty in range(boxes[i, 1] - ry0, boxes[i, 3] - ry0 + 1):
+                for tx in range(boxes[i, 0] - rx0, boxes[i, 2] - rx0 + 1):
+                    reg = ty * nrx + tx
+                    if not mask[reg]:
+                        mask[reg] = True
+                        pinned[count] = reg
+                        count += 1
+                        if reg_dyn[reg] < 0:
+                            missing += 1
+    if missing > free_state[0]:
+        return -2 - (missing - free_state[0])
+    for j in range(count):
+        grid.hold_page(pinned[j], reg_dyn, dyn_head, free_state, page_free)
+        reg_dyncount[pinned[j]] += 1
+    pinned[count] = -1
+    side_len[0] = side_len[1] = 0
+    k = 0
+    for i in range(n):
+        t = side[i]
+        if t < 2:
+            sides[t, side_len[t]] = i
+            side_len[t] += 1
+        else:
+            rest[k] = i
+            k += 1
+    return k
+
+
+@njit(cache=True)
+def unpin(pinned, reg_dyn, reg_dyncount, free_state, page_free):
+    """plan_apart's counts off its regions (pinned, up to a -1); a region left without an
+    entry gives its page back, as UnMap does."""
+    for j in range(pinned.shape[0]):
+        reg = pinned[j]
+        if reg < 0:
+            return
+        reg_dyncount[reg] -= 1
+        if reg_dyncount[reg] == 0:
+            page_free[free_state[0]] = reg_dyn[reg]
+            free_state[0] += 1
+            reg_dyn[reg] = -1
 
 
 def elements(model, tails=()):
@@ -330,10 +617,19 @@ class Motion:
         self.r_blocks = (np.concatenate([r.block_ids for r in robots]).astype(np.int64)
                          if robots else np.zeros(0, np.int64))
         most = max(sizes, default=0) or 1
-        self.new_rows = np.zeros((most, 4))
-        self.old_rows = np.zeros((most, 4))
-        self.seqs = np.zeros((2, most), np.int64)
-        self.box = np.zeros(4, np.int64)
+        # scratch of the moves: a row per thread of move_apart (the first for the others)
+        self.new_rows = np.zeros((2, most, 4))
+        self.old_rows = np.zeros((2, most, 4))
+        self.seqs = np.zeros((2, 2, most), np.int64)
+        self.box = np.zeros((2, 4), np.int64)
+        self.vx = np.zeros((2,) + space._vx.shape, np.int64)
+        self.vy = np.zeros((2,) + space._vy.shape, np.int64)
+        n = len(robots)
+        self.bases = np.zeros(n, np.int64)
+        self.in_order = np.arange(n, dtype=np.int64)
+        self.sides = np.zeros((2, n), np.int64)
+        self.side_len = np.zeros(2, np.int64)
+        self.rest = np.zeros(n, np.int64)
         ms = [r.model for r in robots]
         self.drive = np.array([DRIVES[m.drive] for m in ms], np.int64)
         self.wheelbase = np.array([m.wheelbase for m in ms], np.float64)
@@ -362,28 +658,68 @@ class Motion:
             given[:] = False
 
     def move(self, state, subscribed, dt, layer):
-        """Every subscribed robot's move, in order, and every robot's twist."""
+        """Every subscribed robot's move, in order, and every robot's twist; with many
+        bodies to draw, the robots far apart on two threads at once first (plan_apart)."""
         sp = self.space
+        seq = sp.seq
+        sp.seq = seq_bases(subscribed, state.velocity, self.r_bm_off, self.r_blk_off, seq,
+                           self.bases)
+        order = self.in_order
+        if (sp.seq - seq) // 2 >= APART_BODIES and numba_threads() > 1:
+            order = self._move_apart(state, subscribed, dt, layer)
         first = 0
         while True:
-            seq = np.array([sp.seq], np.int64)
             first = move_robots(
-                first, subscribed, state.velocity, state.pose, state.stalled, state.twist,
-                dt, layer, self.r_bm_off, self.bm_nblk, self.bodies.off, self.bodies.pose,
-                self.bodies.stack, self.bodies.zadd, self.r_blk_off, self.r_blocks,
-                self.new_rows, self.old_rows, self.seqs, seq, self.box, sp.blk_radius,
-                sp.blk_pages, sp.ppm,
-                sp.blk_pts, sp.blk_pts_off, sp._vx, sp._vy, sp.rc_start, sp.rc_len, sp.rc_x,
-                sp.rc_y, sp.rx0, sp.ry0, sp.nrx, sp.nry, sp.reg_count, sp.reg_static,
-                sp.reg_dyn, sp.reg_dyncount, sp.st_coll, sp.blk_class, sp.dyn_head,
-                sp.ent_block, sp.ent_next, sp.ent_seq, sp.free_state, sp.ent_free,
-                sp.page_free, sp.blk_model, sp.blk_zmin, sp.blk_zmax, sp.model_root,
-                sp.model_obstacle)
-            sp.seq = int(seq[0])
+                order, first, self.bases, subscribed, state.velocity, state.pose,
+                state.stalled, state.twist, dt, layer, *self._tables(), self.new_rows[0],
+                self.old_rows[0], self.seqs[0], self.box[0], *self._grid(), self.vx[0],
+                self.vy[0], *self._cells())
             if first < 0:
                 return
-            blocks = self.r_blocks[self.r_blk_off[first]:self.r_blk_off[first + 1]]
-            if sp.pages_short(blocks):
+            i = order[first]
+            if sp.pages_short(self.r_blocks[self.r_blk_off[i]:self.r_blk_off[i + 1]]):
                 sp.grow_pages()
             else:
-                sp.resize(*self.box.tolist())
+                sp.resize(*self.box[0].tolist())
+
+    def _move_apart(self, state, subscribed, dt, layer):
+        """plan_apart's two sides moved at once (move_apart); the robots left to move in
+        turn, in order."""
+        sp = self.space
+        tables = self._tables()
+        while True:
+            pinned = np.empty(sp.nrx * sp.nry + 1, np.int64)
+            k = plan_apart(subscribed, state.velocity, state.pose, dt, layer, *tables,
+                           self.new_rows[0], sp.blk_radius, sp.ppm, sp.rc_start, sp.rc_len,
+                           sp.rc_x, sp.rc_y, sp.rx0, sp.ry0, sp.nrx, sp.nry, sp.reg_dyn,
+                           sp.reg_dyncount, sp.dyn_head, sp.free_state, sp.page_free,
+                           self.sides, self.side_len, self.rest, pinned)
+            if k >= -1:
+                break
+            sp.grow_pages(-2 - k)
+        if k == -1:
+            return self.in_order
+        move_apart(self.sides, self.side_len, self.bases, subscribed, state.velocity,
+                   state.pose, state.stalled, state.twist, dt, layer, *tables, self.new_rows,
+                   self.old_rows, self.seqs, self.box, *self._grid(), self.vx, self.vy,
+                   *self._cells())
+        unpin(pinned, sp.reg_dyn, sp.reg_dyncount, sp.free_state, sp.page_free)
+        return self.rest[:k]
+
+    def _tables(self):
+        """The robots' bodies and blocks, as the move kernels take them."""
+        b = self.bodies
+        return (self.r_bm_off, self.bm_nblk, b.off, b.pose, b.stack, b.zadd, self.r_blk_off,
+                self.r_blocks)
+
+    def _grid(self):
+        sp = self.space
+        return sp.blk_radius, sp.blk_pages, sp.ppm, sp.blk_pts, sp.blk_pts_off
+
+    def _cells(self):
+        sp = self.space
+        return (sp.rc_start, sp.rc_len, sp.rc_x, sp.rc_y, sp.rx0, sp.ry0, sp.nrx, sp.nry,
+                sp.reg_count, sp.reg_static, sp.reg_dyn, sp.reg_dyncount, sp.st_coll,
+                sp.blk_class, sp.dyn_head, sp.ent_block, sp.ent_next, sp.ent_seq,
+                sp.free_state, sp.page_free, sp.blk_model, sp.blk_zmin, sp.blk_zmax,
+                sp.model_root, sp.model_obstacle)

@@ -142,12 +142,10 @@ class Space:
         self.rc_len = np.zeros((2, max(n, 1)), np.int64)
         self.rc_x = np.zeros((2, total), np.int64)
         self.rc_y = np.zeros((2, total), np.int64)
-        entries = 2 * total
+        entries = 2 * total          # a block's own, per cell its drawing can take (grid.entry_of)
         self.ent_block = np.zeros(entries, np.int64)
         self.ent_seq = np.zeros(entries, np.int64)
-        self.ent_next = np.arange(1, entries + 1, dtype=np.int64)
-        self.ent_next[-1] = -1
-        self.ent_free = np.zeros(1, np.int64)
+        self.ent_next = np.full(entries, -1, np.int64)
         # the most regions each block's drawing can take, in both layers: the pages a
         # block's redraw may need at most; the pool grows as they are needed, never ahead of
         # them, so that a swarm costs the regions it covers (8 KB each), not its worst case
@@ -235,7 +233,7 @@ class Space:
                         self.rc_len, self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx,
                         self.nry, self.reg_count, self.reg_dyn, self.reg_dyncount,
                         self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
-                        self.free_state, self.ent_free, self.page_free, False,
+                        self.free_state, self.page_free, False,
                         self.reg_static, self.st_coll, self.blk_class, self.blk_model,
                         self.blk_zmin, self.blk_zmax, self.model_root, self.model_obstacle)
             start = end
@@ -251,7 +249,7 @@ class Space:
                          self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx, self.nry,
                          self.reg_count, self.reg_static, self.reg_dyn, self.reg_dyncount,
                          self.st_coll, self.blk_class, self.dyn_head, self.ent_block,
-                         self.ent_next, self.ent_seq, self.free_state, self.ent_free,
+                         self.ent_next, self.ent_seq, self.free_state,
                          self.page_free, self.blk_model, self.blk_zmin, self.blk_zmax,
                          self.model_root, self.model_obstacle)
 

@@ -10,7 +10,8 @@ angular noise, and Stage's lasernoise controller on it), Stage's wander on one r
 expand_swarm and pioneer_flocking on two others (their batches' kernels) calls every kernel
 with the argument types stageros uses (test_stage_warmup.py checks that none is left out);
 a second world, whose robot stands on another model, the kernels a World moving its robots
-one by one calls; fasr2's planner is called on its own.
+one by one calls; a third, two robots far apart, the kernels that move robots two at a
+time; fasr2's planner is called on its own.
 """
 import glob
 import hashlib
@@ -48,6 +49,12 @@ ON_A_MODEL = '''resolution 0.02
 model( pose [ 0 0 0 0 ] size [ 0.6 0.6 0.1 ] position( size [ 0.2 0.2 0.2 ] ) )
 '''
 
+# two robots far apart: moved at once, each in its own thread (motion.move_apart)
+APART = '''resolution 0.02
+position( pose [ -3 0 0 0 ] size [ 0.3 0.3 0.2 ] )
+position( pose [ 3 0 0 0 ] size [ 0.3 0.3 0.2 ] )
+'''
+
 
 def warm():
     """Loads and steps the world: every kernel compiled (or loaded from the cache)."""
@@ -75,8 +82,22 @@ def warm():
         world.set_command(0, 0.1, 0.0, 0.1)
         for _ in range(2):
             world.step()
+        path = os.path.join(tmp, 'apart.world')
+        with open(path, 'w') as f:
+            f.write(APART)
+        warm_moves_apart(load_world(path))
     warm_planner()
     warm_race()
+
+
+def warm_moves_apart(world):
+    """The moves of robots far apart, two at a time (motion.plan_apart, move_apart), which
+    a step takes only with many robots on a machine with two threads or more."""
+    for k in range(len(world.robots)):
+        world.set_command(k, 0.5, 0.0, 0.1)
+    world.step()
+    world.motion._move_apart(world.state, world._masks()[0], world.interval_us / 1e6,
+                             world.updates % 2)
 
 
 def warm_race():
