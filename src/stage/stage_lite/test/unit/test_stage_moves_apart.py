@@ -35,7 +35,7 @@ def run(path, steps, monkeypatch, apart, drive=None):
     """The world's steps with the robots moved in turn, or two at a time whenever a split
     exists (whatever numba's thread count); per step what a user sees, and the sides' sizes
     of each step moved apart. drive(world): commands given after the load."""
-    monkeypatch.setattr(motion, 'APART_BODIES', 1 if apart else 10 ** 9)
+    monkeypatch.setattr(motion, 'APART_CELLS', 1 if apart else 10 ** 9)
     monkeypatch.setattr(motion, 'numba_threads', lambda: 2)
     w = load_world(path, stageros=drive is not None)
     if drive is not None:
@@ -180,14 +180,18 @@ def test_plan_apart_leaves_moves_off_the_table_in_turn_and_asks_for_the_pages_it
     m, sp = w.motion, w.space
     subscribed = w._masks()[0]
 
+    regions = sp.nrx * sp.nry
+    head, marked = np.full(regions, -1, np.int64), np.zeros(regions, np.bool_)
+
     def plan():
-        pinned = np.empty(sp.nrx * sp.nry + 1, np.int64)
+        pinned = np.empty(regions + 1, np.int64)
         k = motion.plan_apart(subscribed, w.state.velocity, w.state.pose, 0.1, 0,
                               *m._tables(), m.new_rows[0], sp.blk_radius, sp.ppm,
                               sp.rc_start, sp.rc_len, sp.rc_x, sp.rc_y, sp.rx0, sp.ry0,
                               sp.nrx, sp.nry, sp.reg_dyn, sp.reg_dyncount, sp.dyn_head,
                               sp.free_state, sp.page_free, m.sides, m.side_len, m.rest,
-                              pinned)
+                              head, marked, pinned)
+        assert (head == -1).all() and not marked.any()      # left for the next plan
         return k, pinned[:np.argmax(pinned < 0)] if k >= 0 else None
 
     # the east robot put where its regions hold nothing yet: its sides' regions get pages

@@ -60,6 +60,34 @@ def test_a_paused_world_runs_headless_as_stage_does_and_args_reach_the_controlle
     assert got.read_text() == 'echo_args one two|fast quiet'
 
 
+
+POLICY_CONTROLLER = '''
+import os
+
+
+def init(model, args):
+    with open(%r, 'w') as f:
+        f.write(os.environ.get('OMP_WAIT_POLICY', 'unset'))
+'''
+
+
+def test_headless_flat_out_its_kernel_threads_spin_between_kernels_unless_told(
+        tmp_path, monkeypatch):
+    got = tmp_path / 'policy.txt'
+    (tmp_path / 'policy.py').write_text(POLICY_CONTROLLER % str(got))
+    monkeypatch.setenv('STAGEPATH', str(tmp_path))
+    env = {'OMP_WAIT_POLICY': None}         # (None: not in the program's environment)
+    path = world(tmp_path, 'quit_time 1', 'policy')
+    assert stage('-g', path, env=env)[0] == 0
+    assert got.read_text() == 'unset'        # OpenMP's own: a spin before they sleep
+    assert stage('-g', path, env={'OMP_WAIT_POLICY': 'ACTIVE'})[0] == 0
+    assert got.read_text() == 'ACTIVE'       # the user's
+    # stageros and anything else importing the model: asleep when idle
+    code, out = run_to_exit(['python3', '-c', 'import os, stage_lite.model.jit; '
+                             'print(os.environ["OMP_WAIT_POLICY"])'], RUN_DEADLINE_S, env=env)
+    assert code == 0 and out.strip() == 'PASSIVE'
+
+
 @pytest.mark.parametrize('args, code, what', [
     ([], 2, 'usage: stage [-g] [-c] [-a ARGS] WORLD'),
     (['-g', '/nonexistent.world'], 1, '[FATAL] /nonexistent.world: the world file does not'),

@@ -8,10 +8,22 @@ all at ./ws build, first dropping the whole cache when any source of the package
 """
 import os
 
-# The threads of the parallel ray cast sleep when idle: at real time stageros waits about
-# 100 ms between steps, and OpenMP's default (spinning up to 300 000 times first) would burn
-# part of a core meanwhile. Read by OpenMP when numba first starts its threads.
+# The threads of the parallel kernels sleep when idle: at real time stageros waits about
+# 100 ms between steps, and OpenMP's default (spinning up to 300 000 times first, about 10 ms
+# here) would burn part of a core meanwhile. Read by OpenMP when numba first starts its
+# threads.
+_POLICY_GIVEN = 'OMP_WAIT_POLICY' in os.environ
 os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
+
+
+def spin_between_kernels():
+    """For a run flat out that has the cores to itself (Stage's own `stage -g`): numba's
+    threads wait for the next parallel kernel spinning a while (OpenMP's default), not
+    asleep: waking them costs about 0.15 ms a kernel on this project's machines, a tenth of
+    a flocking world's step, and such a run has no idle time for the spin to waste. Call it
+    before the first parallel kernel runs; a policy the user set stays."""
+    if not _POLICY_GIVEN:
+        os.environ.pop('OMP_WAIT_POLICY', None)
 
 try:
     from numba import get_num_threads as numba_threads
@@ -25,4 +37,4 @@ except ImportError:  # pragma: no cover - python3-numba is a dependency
     def numba_threads():
         return 1
 
-__all__ = ['njit', 'numba_threads', 'prange']
+__all__ = ['njit', 'numba_threads', 'prange', 'spin_between_kernels']

@@ -27,9 +27,12 @@ VELOCITY = MODE_CODE['velocity']
 ACCELERATION = MODE_CODE['acceleration']
 DIFF, OMNI, CAR = 0, 1, 2
 DRIVES = {'diff': DIFF, 'omni': OMNI, 'car': CAR}
-#: From this many bodies drawn in a step, the robots far apart are moved two at a time
-#: (plan_apart; below it, planning and starting the threads cost more than they save).
-APART_BODIES = 64
+#: A move's cost besides its outline's cells (its bodies' poses, the tried pose), in cells
+MOVE_CELLS = 20
+#: From this much work in a step's moves (move_work: about 1.5 ms on this project's
+#: machines), the robots far apart are moved two at a time (plan_apart); below it, planning
+#: and waking a thread (about 0.15 ms asleep) cost more than they save.
+APART_CELLS = 15000
 
 
 @njit(cache=True)
@@ -240,6 +243,20 @@ def seq_bases(subscribed, velocity, r_bm_off, r_blk_off, seq, bases):
 
 
 @njit(cache=True)
+def move_work(subscribed, velocity, r_blk_off, r_blocks, rc_len, layer):
+    """What a step's moves will cost, in outline cells: per robot whose move draws, the
+    cells of its outline in `layer` (those it erases, about as many as it draws) and
+    MOVE_CELLS."""
+    work = 0
+    for i in range(r_blk_off.shape[0] - 1):
+        if _draws(i, subscribed, velocity, r_blk_off):
+            work += MOVE_CELLS
+            for k in range(r_blk_off[i], r_blk_off[i + 1]):
+                work += rc_len[layer, r_blocks[k]]
+    return work
+
+
+@njit(cache=True)
 def _tried(pose, velocity, i, dt):
     """Robot i's pose after a step at its velocity (the move it tries)."""
     return pose_add(pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3], velocity[i, 0] * dt,
@@ -447,7 +464,7 @@ def _sides(cells, boxes, draws, weight, axis, split, head, entry_robot, entry_ne
 def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, el_pose,
                el_stack, el_zadd, r_blk_off, r_blocks, rows, blk_radius, ppm, rc_start, rc_len,
                rc_x, rc_y, rx0, ry0, nrx, nry, reg_dyn, reg_dyncount, dyn_head, free_state,
-               page_free, sides, side_len, rest, pinned):
+               page_free, sides, side_len, rest, head, marked, pinned):
     """Splits a step's moves for move_apart: the robots whose moves draw (_draws), each
     with the regions its move may touch, on two sides of a line of regions (_sides; of the
     lines across x and across y at a few quantiles of the robots' places, the one that
@@ -456,9 +473,10 @@ def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, 
     and writes only the cells of its regions; a block's entries are its own,
     grid.entry_of), so this gives World._move's grid, poses and stalls. The sides' regions
     get a page each and a count that keeps it through the sides' moves (pinned: their
-    list, up to a -1; undo with unpin). Returns the robots in rest (robots of `rest`, in
-    order), -1 when a move may leave the table or no split halves the work (then nothing
-    is done: move them in turn), or -2 - pages when the pool needs that many more pages."""
+    list, up to a -1; undo with unpin). head (-1) and marked (False): a value per region of
+    the table, left so. Returns the robots in rest (robots of `rest`, in order), -1 when a
+    move may leave the table or no split halves the work (then nothing is done: move them
+    in turn), or -2 - pages when the pool needs that many more pages."""
     n = pose.shape[0]
     cells = np.zeros((n, 4), np.int64)
     boxes = np.zeros((n, 4), np.int64)
@@ -487,7 +505,6 @@ def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, 
             m += 1
     if m < 2:
         return -1
-    head = np.full(nrx * nry, -1, np.int64)
     entry_robot = np.empty(area, np.int64)
     entry_next = np.empty(area, np.int64)
     touched = np.empty(area, np.int64)
@@ -511,7 +528,6 @@ def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, 
         return -1
     _sides(cells, boxes, draws, weight, best_axis, best_split, head, entry_robot, entry_next,
            touched, rx0, ry0, nrx, side)
-    mask = np.zeros(nrx * nry, np.bool_)
     count = 0
     missing = 0
     for i in range(n):
@@ -519,12 +535,14 @@ def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, 
             for ty in range(boxes[i, 1] - ry0, boxes[i, 3] - ry0 + 1):
                 for tx in range(boxes[i, 0] - rx0, boxes[i, 2] - rx0 + 1):
                     reg = ty * nrx + tx
-                    if not mask[reg]:
-                        mask[reg] = True
+                    if not marked[reg]:
+                        marked[reg] = True
                         pinned[count] = reg
                         count += 1
                         if reg_dyn[reg] < 0:
                             missing += 1
+    for j in range(count):
+        marked[pinned[j]] = False
     if missing > free_state[0]:
         return -2 - (missing - free_state[0])
     for j in range(count):
@@ -630,6 +648,9 @@ class Motion:
         self.sides = np.zeros((2, n), np.int64)
         self.side_len = np.zeros(2, np.int64)
         self.rest = np.zeros(n, np.int64)
+        # plan_apart's per region of the grid's table (made at the first plan, and again
+        # when the table grows)
+        self._region_head = self._region_marked = self._pinned = np.zeros(0, np.int64)
         ms = [r.model for r in robots]
         self.drive = np.array([DRIVES[m.drive] for m in ms], np.int64)
         self.wheelbase = np.array([m.wheelbase for m in ms], np.float64)
@@ -658,14 +679,14 @@ class Motion:
             given[:] = False
 
     def move(self, state, subscribed, dt, layer):
-        """Every subscribed robot's move, in order, and every robot's twist; with many
-        bodies to draw, the robots far apart on two threads at once first (plan_apart)."""
+        """Every subscribed robot's move, in order, and every robot's twist; with enough
+        work, the robots far apart on two threads at once first (plan_apart)."""
         sp = self.space
-        seq = sp.seq
-        sp.seq = seq_bases(subscribed, state.velocity, self.r_bm_off, self.r_blk_off, seq,
+        sp.seq = seq_bases(subscribed, state.velocity, self.r_bm_off, self.r_blk_off, sp.seq,
                            self.bases)
         order = self.in_order
-        if (sp.seq - seq) // 2 >= APART_BODIES and numba_threads() > 1:
+        if numba_threads() > 1 and move_work(subscribed, state.velocity, self.r_blk_off,
+                                             self.r_blocks, sp.rc_len, layer) >= APART_CELLS:
             order = self._move_apart(state, subscribed, dt, layer)
         first = 0
         while True:
@@ -687,13 +708,19 @@ class Motion:
         turn, in order."""
         sp = self.space
         tables = self._tables()
+        regions = sp.nrx * sp.nry
+        if self._region_head.size != regions:       # the table was made or has grown
+            self._region_head = np.full(regions, -1, np.int64)
+            self._region_marked = np.zeros(regions, np.bool_)
+            self._pinned = np.empty(regions + 1, np.int64)
+        pinned = self._pinned
         while True:
-            pinned = np.empty(sp.nrx * sp.nry + 1, np.int64)
             k = plan_apart(subscribed, state.velocity, state.pose, dt, layer, *tables,
                            self.new_rows[0], sp.blk_radius, sp.ppm, sp.rc_start, sp.rc_len,
                            sp.rc_x, sp.rc_y, sp.rx0, sp.ry0, sp.nrx, sp.nry, sp.reg_dyn,
                            sp.reg_dyncount, sp.dyn_head, sp.free_state, sp.page_free,
-                           self.sides, self.side_len, self.rest, pinned)
+                           self.sides, self.side_len, self.rest, self._region_head,
+                           self._region_marked, pinned)
             if k >= -1:
                 break
             sp.grow_pages(-2 - k)
