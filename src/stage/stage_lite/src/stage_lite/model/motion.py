@@ -648,6 +648,10 @@ class Motion:
         self.sides = np.zeros((2, n), np.int64)
         self.side_len = np.zeros(2, np.int64)
         self.rest = np.zeros(n, np.int64)
+        # move_work's most (every robot moving, its outlines as long as they can be): a
+        # world of a few robots never plans
+        caps = np.diff(np.append(space.rc_start, space.rc_x.shape[1] - 1))
+        self._most_work = MOVE_CELLS * n + int(caps[self.r_blocks].sum())
         # plan_apart's per region of the grid's table (made at the first plan, and again
         # when the table grows)
         self._region_head = self._region_marked = self._pinned = np.zeros(0, np.int64)
@@ -685,8 +689,9 @@ class Motion:
         sp.seq = seq_bases(subscribed, state.velocity, self.r_bm_off, self.r_blk_off, sp.seq,
                            self.bases)
         order = self.in_order
-        if numba_threads() > 1 and move_work(subscribed, state.velocity, self.r_blk_off,
-                                             self.r_blocks, sp.rc_len, layer) >= APART_CELLS:
+        if (self._most_work >= APART_CELLS and numba_threads() > 1
+                and move_work(subscribed, state.velocity, self.r_blk_off, self.r_blocks,
+                              sp.rc_len, layer) >= APART_CELLS):
             order = self._move_apart(state, subscribed, dt, layer)
         first = 0
         while True:

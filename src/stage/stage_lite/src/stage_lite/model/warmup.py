@@ -91,13 +91,17 @@ def warm():
 
 
 def warm_moves_apart(world):
-    """The moves of robots far apart, two at a time (motion.plan_apart, move_apart), which
-    a step takes only with many robots on a machine with two threads or more."""
+    """The moves of robots far apart, two at a time (motion.move_work, plan_apart,
+    move_apart), which a step takes only with many robots on a machine with two threads or
+    more."""
+    from .motion import move_work
     for k in range(len(world.robots)):
         world.set_command(k, 0.5, 0.0, 0.1)
     world.step()
-    world.motion._move_apart(world.state, world._masks()[0], world.interval_us / 1e6,
-                             world.updates % 2)
+    m, subscribed, layer = world.motion, world._masks()[0], world.updates % 2
+    move_work(subscribed, world.state.velocity, m.r_blk_off, m.r_blocks, world.space.rc_len,
+              layer)
+    m._move_apart(world.state, subscribed, world.interval_us / 1e6, layer)
 
 
 def warm_race():
