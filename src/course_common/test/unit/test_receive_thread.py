@@ -123,11 +123,19 @@ def test_socket_removed_after_its_bytes_came_is_not_read(pairs):
 
 
 def test_a_socket_a_reader_removes_is_not_read_later_in_the_same_round(pairs):
-    # both sockets have bytes when the thread first waits on them; each reader removes the
-    # other: whichever runs first, the other is not read in that round nor later
+    # both sockets have bytes when the thread first waits on them (both added while the
+    # thread is held inside another reader, so that one round takes both); each reader
+    # removes the other: whichever runs first, the other is not read in that round nor later
     receiver = ReceiveThread('receiver_remove_each_other', lambda r, e: None)
-    (a1, b1), (a2, b2) = pairs(), pairs()
+    (a1, b1), (a2, b2), (gate_a, gate_b) = pairs(), pairs(), pairs()
+    inside, release = threading.Event(), threading.Event()
     calls = []
+
+    def hold():
+        gate_b.recv(10)
+        inside.set()
+        release.wait(DEADLINE_S)
+        return True
 
     def reader(own, other, name):
         def read():
@@ -136,10 +144,14 @@ def test_a_socket_a_reader_removes_is_not_read_later_in_the_same_round(pairs):
             receiver.remove(other)
             return True
         return read
+    receiver.add(gate_b, hold)
+    gate_a.sendall(b'g')
+    wait_for(inside.is_set, DEADLINE_S, 'the thread held in a reader')
     a1.sendall(b'x')
     a2.sendall(b'y')
     receiver.add(b1, reader(b1, b2, 'b1'))
     receiver.add(b2, reader(b2, b1, 'b2'))
+    release.set()
     serve_a_later_socket(receiver, pairs)
     assert len(calls) == 1
 
