@@ -12,15 +12,16 @@ a robot on another model moves the World's own way.
 Stage moves its robots one after another in its main thread. Two robots' moves commute when
 neither can touch a cell the other's touches, so with many robots the moves are split
 (plan_apart) into two sides of a line across the grid, moved at once in two threads
-(move_apart), and a rest moved after them in turn: the same grid, poses and stalls as in
-turn, on every machine.
+(move_robots, without the GIL), and a rest moved after them in turn: the same grid, poses
+and stalls as in turn, on every machine.
 """
 import math
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 from . import grid
-from .jit import njit, numba_threads, prange
+from .jit import njit, numba_threads
 from .robot_state import MODE_CODE
 
 VELOCITY = MODE_CODE['velocity']
@@ -324,21 +325,22 @@ def _move_one(i, base, check, subscribed, velocity, pose, stalled, twist, dt, la
     return True
 
 
-@njit(cache=True)
-def move_robots(order, first, bases, subscribed, velocity, pose, stalled, twist, dt, layer,
-                r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks,
+@njit(cache=True, nogil=True)
+def move_robots(order, first, check, bases, subscribed, velocity, pose, stalled, twist, dt,
+                layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks,
                 new_rows, old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
                 rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
                 reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next,
                 ent_seq, free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
                 model_obstacle):
     """World.step's moves of the robots order[first:], in turn (_move_one). Returns -1
-    when done, or the place in `order` of the robot whose move needs more free pages
-    (Space.pages_short) or a larger region table (box: the cells it must hold); nothing of
-    its move done yet."""
+    when done, or (with `check`) the place in `order` of the robot whose move needs more
+    free pages (Space.pages_short) or a larger region table (box: the cells it must hold);
+    nothing of its move done yet. Without the GIL: plan_apart's two sides move at once,
+    each in its own thread, without `check` (the plan has made room for them)."""
     for j in range(first, order.shape[0]):
         i = order[j]
-        if not _move_one(i, bases[i], True, subscribed, velocity, pose, stalled, twist, dt,
+        if not _move_one(i, bases[i], check, subscribed, velocity, pose, stalled, twist, dt,
                          layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd,
                          r_blk_off, r_blocks, new_rows, old_rows, seqs, box, blk_radius,
                          blk_pages, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x, rc_y,
@@ -348,30 +350,6 @@ def move_robots(order, first, bases, subscribed, velocity, pose, stalled, twist,
                          model_obstacle):
             return j
     return -1
-
-
-@njit(parallel=True, cache=True)
-def move_apart(sides, side_len, bases, subscribed, velocity, pose, stalled, twist, dt, layer,
-               r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks,
-               new_rows, old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
-               rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
-               reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next,
-               ent_seq, free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
-               model_obstacle):
-    """The moves of two sides (plan_apart's: robots whose moves touch regions of the grid
-    no robot of the other side touches) at once, each side's in turn in its own thread,
-    with its own scratch rows (new_rows[t], ...). plan_apart has made the table hold them
-    and given each of their regions a page that stays."""
-    for t in prange(2):
-        for j in range(side_len[t]):
-            i = sides[t, j]
-            _move_one(i, bases[i], False, subscribed, velocity, pose, stalled, twist, dt,
-                      layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off,
-                      r_blocks, new_rows[t], old_rows[t], seqs[t], box[t], blk_radius,
-                      blk_pages, ppm, pts, pts_off, vx[t], vy[t], rc_start, rc_len, rc_x, rc_y,
-                      rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
-                      st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state,
-                      page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle)
 
 
 @njit(cache=True)
@@ -465,18 +443,18 @@ def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, 
                el_stack, el_zadd, r_blk_off, r_blocks, rows, blk_radius, ppm, rc_start, rc_len,
                rc_x, rc_y, rx0, ry0, nrx, nry, reg_dyn, reg_dyncount, dyn_head, free_state,
                page_free, sides, side_len, rest, head, marked, pinned):
-    """Splits a step's moves for move_apart: the robots whose moves draw (_draws), each
-    with the regions its move may touch, on two sides of a line of regions (_sides; of the
-    lines across x and across y at a few quantiles of the robots' places, the one that
-    leaves the least to do: the larger side's blocks and the rest's), the rest to be moved
-    after the sides, in order. Moves of robots that share no region commute (each reads
-    and writes only the cells of its regions; a block's entries are its own,
-    grid.entry_of), so this gives World._move's grid, poses and stalls. The sides' regions
-    get a page each and a count that keeps it through the sides' moves (pinned: their
-    list, up to a -1; undo with unpin). head (-1) and marked (False): a value per region of
-    the table, left so. Returns the robots in rest (robots of `rest`, in order), -1 when a
-    move may leave the table or no split halves the work (then nothing is done: move them
-    in turn), or -2 - pages when the pool needs that many more pages."""
+    """Splits a step's moves in two sides moved at once (Motion._move_apart): the robots
+    whose moves draw (_draws), each with the regions its move may touch, on two sides of a
+    line of regions (_sides; of the lines across x and across y at a few quantiles of the
+    robots' places, the one that leaves the least to do: the larger side's blocks and the
+    rest's), the rest to be moved after the sides, in order. Moves of robots that share no
+    region commute (each reads and writes only the cells of its regions; a block's entries
+    are its own, grid.entry_of), so this gives World._move's grid, poses and stalls. The
+    sides' regions get a page each and a count that keeps it through the sides' moves
+    (pinned: their list, up to a -1; undo with unpin). head (-1) and marked (False): a value
+    per region of the table, left so. Returns the robots in rest (robots of `rest`, in
+    order), -1 when a move may leave the table or no split halves the work (then nothing is
+    done: move them in turn), or -2 - pages when the pool needs that many more pages."""
     n = pose.shape[0]
     cells = np.zeros((n, 4), np.int64)
     boxes = np.zeros((n, 4), np.int64)
@@ -635,7 +613,7 @@ class Motion:
         self.r_blocks = (np.concatenate([r.block_ids for r in robots]).astype(np.int64)
                          if robots else np.zeros(0, np.int64))
         most = max(sizes, default=0) or 1
-        # scratch of the moves: a row per thread of move_apart (the first for the others)
+        # scratch of the moves: a row per side moved at once (the first for the others)
         self.new_rows = np.zeros((2, most, 4))
         self.old_rows = np.zeros((2, most, 4))
         self.seqs = np.zeros((2, 2, most), np.int64)
@@ -655,6 +633,7 @@ class Motion:
         # plan_apart's per region of the grid's table (made at the first plan, and again
         # when the table grows)
         self._region_head = self._region_marked = self._pinned = np.zeros(0, np.int64)
+        self._side_thread = None        # the second side's (made at the first split)
         ms = [r.model for r in robots]
         self.drive = np.array([DRIVES[m.drive] for m in ms], np.int64)
         self.wheelbase = np.array([m.wheelbase for m in ms], np.float64)
@@ -696,7 +675,7 @@ class Motion:
         first = 0
         while True:
             first = move_robots(
-                order, first, self.bases, subscribed, state.velocity, state.pose,
+                order, first, True, self.bases, subscribed, state.velocity, state.pose,
                 state.stalled, state.twist, dt, layer, *self._tables(), self.new_rows[0],
                 self.old_rows[0], self.seqs[0], self.box[0], *self._grid(), self.vx[0],
                 self.vy[0], *self._cells())
@@ -709,7 +688,8 @@ class Motion:
                 sp.resize(*self.box[0].tolist())
 
     def _move_apart(self, state, subscribed, dt, layer):
-        """plan_apart's two sides moved at once (move_apart); the robots left to move in
+        """plan_apart's two sides moved at once, one in a thread of its own; the robots
+        left to move in
         turn, in order."""
         sp = self.space
         tables = self._tables()
@@ -731,10 +711,17 @@ class Motion:
             sp.grow_pages(-2 - k)
         if k == -1:
             return self.in_order
-        move_apart(self.sides, self.side_len, self.bases, subscribed, state.velocity,
-                   state.pose, state.stalled, state.twist, dt, layer, *tables, self.new_rows,
-                   self.old_rows, self.seqs, self.box, *self._grid(), self.vx, self.vy,
-                   *self._cells())
+
+        def move_side(t):
+            move_robots(self.sides[t, :self.side_len[t]], 0, False, self.bases, subscribed,
+                        state.velocity, state.pose, state.stalled, state.twist, dt, layer,
+                        *tables, self.new_rows[t], self.old_rows[t], self.seqs[t], self.box[t],
+                        *self._grid(), self.vx[t], self.vy[t], *self._cells())
+        if self._side_thread is None:
+            self._side_thread = ThreadPoolExecutor(1, thread_name_prefix='stage_moves')
+        other = self._side_thread.submit(move_side, 1)
+        move_side(0)
+        other.result()
         unpin(pinned, sp.reg_dyn, sp.reg_dyncount, sp.free_state, sp.page_free)
         return self.rest[:k]
 

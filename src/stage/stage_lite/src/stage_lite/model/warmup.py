@@ -49,7 +49,7 @@ ON_A_MODEL = '''resolution 0.02
 model( pose [ 0 0 0 0 ] size [ 0.6 0.6 0.1 ] position( size [ 0.2 0.2 0.2 ] ) )
 '''
 
-# two robots far apart: moved at once, each in its own thread (motion.move_apart)
+# two robots far apart: moved at once, each in its own thread (motion.Motion._move_apart)
 APART = '''resolution 0.02
 position( pose [ -3 0 0 0 ] size [ 0.3 0.3 0.2 ] )
 position( pose [ 3 0 0 0 ] size [ 0.3 0.3 0.2 ] )
@@ -91,9 +91,9 @@ def warm():
 
 
 def warm_moves_apart(world):
-    """The moves of robots far apart, two at a time (motion.move_work, plan_apart,
-    move_apart), which a step takes only with many robots on a machine with two threads or
-    more."""
+    """The moves of robots far apart, two at a time (motion.move_work, plan_apart, and
+    move_robots without its checks), which a step takes only with many robots on a machine
+    with two threads or more."""
     from .motion import move_work
     for k in range(len(world.robots)):
         world.set_command(k, 0.5, 0.0, 0.1)
