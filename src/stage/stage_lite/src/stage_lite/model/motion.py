@@ -374,12 +374,9 @@ def _cell_box(i, pose, velocity, dt, layer, r_bm_off, bm_nblk, t_off, el_pose, e
         if tried:
             pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = _tried(pose, velocity, i, dt)
         _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, rows)
-        for k in range(nb):
-            r = blk_radius[r_blocks[r_blk_off[i] + k]] * ppm + 2
-            x0 = min(x0, int(math.floor(rows[k, 0] * ppm - r)))
-            x1 = max(x1, int(math.ceil(rows[k, 0] * ppm + r)))
-            y0 = min(y0, int(math.floor(rows[k, 1] * ppm - r)))
-            y1 = max(y1, int(math.ceil(rows[k, 1] * ppm + r)))
+        _outside(rows, nb, r_blocks[r_blk_off[i]:r_blk_off[i + 1]], blk_radius, ppm, 0, 0, 0,
+                 0, out)     # (its box only)
+        x0, y0, x1, y1 = min(x0, out[0]), min(y0, out[1]), max(x1, out[2]), max(y1, out[3])
     pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3] = keep
     out[0], out[1], out[2], out[3] = x0, y0, x1, y1
 
