@@ -68,11 +68,9 @@ class TestTutorials(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('test_tutorials')
-        # rospy asks the master for /rosout_disable_topics_generation on every log line while
-        # it is unset, holding its one master connection's lock; a Ctrl-C that lands during
-        # talker.py's ask runs rospy's shutdown in the same thread, which waits on that lock
-        # for ever (9 of 480 stops here). Set to its default, it is cached: see README.
-        rospy.set_param('/rosout_disable_topics_generation', False)
+        # The master is the workspace's (course_common's roscore.xml): it sets
+        # /rosout_disable_topics_generation, without which a Ctrl-C during talker.py's log
+        # line deadlocks rospy's shutdown (9 of 480 stops here; README).
         cls.chatter = Recorder('/chatter', String, queue_size=1000)
         # The nodes' own INFO lines only, not rospy's warnings and errors (a peer that drops
         # a connection under load logs one).

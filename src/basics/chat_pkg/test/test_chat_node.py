@@ -100,9 +100,9 @@ class TestChat(unittest.TestCase):
         # The slide: "If the same node is launched twice, roscore directs the older node to exit".
         # rospy asks the master for /rosout_disable_topics_generation on every log line while
         # that parameter is unset, and each ask re-registers the node's URI: the older talker's
-        # next line after the newer one registered then makes the master shut the NEWER one
-        # down too. Setting the parameter (to its default) lets rospy cache it; see README.
-        rospy.set_param('/rosout_disable_topics_generation', False)
+        # next line after the newer one registered would then make the master shut the NEWER
+        # one down too. The workspace's master sets it (course_common's roscore.xml), and the
+        # talker asks once (course_common.startup); see README.
         older = rosrun_talker('talker_twin')
         newer = None
         try:
