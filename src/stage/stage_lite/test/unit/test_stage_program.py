@@ -71,21 +71,17 @@ def init(model, args):
 '''
 
 
-def test_headless_flat_out_its_kernel_threads_spin_between_kernels_unless_told(
+def test_headless_flat_out_its_kernel_threads_sleep_between_kernels_unless_told(
         tmp_path, monkeypatch):
+    # OpenMP's default spin took a core from the moves' second thread (jit.py says why)
     got = tmp_path / 'policy.txt'
     (tmp_path / 'policy.py').write_text(POLICY_CONTROLLER % str(got))
     monkeypatch.setenv('STAGEPATH', str(tmp_path))
-    env = {'OMP_WAIT_POLICY': None}         # (None: not in the program's environment)
     path = world(tmp_path, 'quit_time 1', 'policy')
-    assert stage('-g', path, env=env)[0] == 0
-    assert got.read_text() == 'unset'        # OpenMP's own: a spin before they sleep
+    assert stage('-g', path, env={'OMP_WAIT_POLICY': None})[0] == 0   # (None: not set)
+    assert got.read_text() == 'PASSIVE'
     assert stage('-g', path, env={'OMP_WAIT_POLICY': 'ACTIVE'})[0] == 0
     assert got.read_text() == 'ACTIVE'       # the user's
-    # stageros and anything else importing the model: asleep when idle
-    code, out = run_to_exit(['python3', '-c', 'import os, stage_lite.model.jit; '
-                             'print(os.environ["OMP_WAIT_POLICY"])'], RUN_DEADLINE_S, env=env)
-    assert code == 0 and out.strip() == 'PASSIVE'
 
 
 @pytest.mark.parametrize('args, code, what', [

@@ -8,22 +8,14 @@ all at ./ws build, first dropping the whole cache when any source of the package
 """
 import os
 
-# The threads of the parallel kernels sleep when idle: at real time stageros waits about
-# 100 ms between steps, and OpenMP's default (spinning up to 300 000 times first, about 10 ms
-# here) would burn part of a core meanwhile. Read by OpenMP when numba first starts its
-# threads.
-_POLICY_GIVEN = 'OMP_WAIT_POLICY' in os.environ
+# The threads of the parallel kernels sleep when idle, in every program: at real time
+# stageros waits about 100 ms between steps, and OpenMP's default (spinning up to 300 000
+# times first, about 10 ms here) would burn part of a core meanwhile; flat out (`stage -g`)
+# the spinning thread took a core from the robots' moves on their second thread and, on a
+# busy host, from the main thread too (side by side: pioneer_flocking, cave, hospital and
+# 10,000 swarmbots 1.1 to 2 times as fast asleep). Read by OpenMP when it is first loaded;
+# a policy the user set stays.
 os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
-
-
-def spin_between_kernels():
-    """For a run flat out that has the cores to itself (Stage's own `stage -g`): numba's
-    threads wait for the next parallel kernel spinning a while (OpenMP's default), not
-    asleep: waking them costs about 0.15 ms a kernel on this project's machines, a tenth of
-    a flocking world's step, and such a run has no idle time for the spin to waste. Call it
-    before the first parallel kernel runs; a policy the user set stays."""
-    if not _POLICY_GIVEN:
-        os.environ.pop('OMP_WAIT_POLICY', None)
 
 try:
     from numba import get_num_threads as numba_threads
@@ -37,4 +29,4 @@ except ImportError:  # pragma: no cover - python3-numba is a dependency
     def numba_threads():
         return 1
 
-__all__ = ['njit', 'numba_threads', 'prange', 'spin_between_kernels']
+__all__ = ['njit', 'numba_threads', 'prange']

@@ -138,9 +138,6 @@ def run_window(program):
 
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
-    if args.headless:       # flat out from the start to the end
-        from stage_lite.model.jit import spin_between_kernels
-        spin_between_kernels()
     if not os.path.isfile(args.world):
         sys.stderr.write('[FATAL] %s: the world file does not exist\n' % args.world)
         sys.exit(1)
