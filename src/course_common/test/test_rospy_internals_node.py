@@ -11,6 +11,7 @@ import sys
 import threading
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from course_common.publishers import unqueued_publisher
@@ -206,8 +207,11 @@ class RospyInternalsTest(unittest.TestCase):
         pin(after.topics == [], 'rospy.impl.paramserver.get_param_server_cache()',
             'stops /rosout topic listing when /rosout_disable_topics_generation is seeded '
             '(topics: %r)' % after.topics)
-        self.assertFalse(rospy.has_param('/rosout_disable_topics_generation'),
-                         'the seed must stay local, off the parameter server')
+        # The master itself (rospy.get_param would read the seeded cache) still holds the
+        # parameter's default, false, from the workspace's roscore.xml
+        self.assertIs(rosgraph.Master(rospy.get_name()).getParam(
+            '/rosout_disable_topics_generation'), False,
+            'the seed must stay local, off the parameter server')
         inbox.sub.unregister()
 
     def test_name_mappings_hold_the_argv_remaps(self):

@@ -12,7 +12,8 @@ from stage_multi import lesson_world
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 LESSON_WORLD = lesson_world.world_path()
-ROSLAUNCH_PARAMS = {'/rosversion', '/rosdistro'}  # roslaunch's own, in every launch
+# roslaunch's own, in every launch: those of roscore.xml (the workspace's, course_common's)
+ROSLAUNCH_PARAMS = {'/rosversion', '/rosdistro', '/rosout_disable_topics_generation'}
 
 
 def launch(package, name, *args):
