@@ -82,6 +82,11 @@ def test_headless_flat_out_its_kernel_threads_sleep_between_kernels_unless_told(
     assert got.read_text() == 'PASSIVE'
     assert stage('-g', path, env={'OMP_WAIT_POLICY': 'ACTIVE'})[0] == 0
     assert got.read_text() == 'ACTIVE'       # the user's
+    # stageros and anything else importing the model: asleep when idle too
+    code, out = run_to_exit(['python3', '-c', 'import os, stage_lite.model.jit; '
+                             'print(os.environ["OMP_WAIT_POLICY"])'], RUN_DEADLINE_S,
+                            env={'OMP_WAIT_POLICY': None})
+    assert code == 0 and out.strip() == 'PASSIVE'
 
 
 @pytest.mark.parametrize('args, code, what', [

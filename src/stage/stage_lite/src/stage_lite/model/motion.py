@@ -686,8 +686,7 @@ class Motion:
 
     def _move_apart(self, state, subscribed, dt, layer):
         """plan_apart's two sides moved at once, one in a thread of its own; the robots
-        left to move in
-        turn, in order."""
+        left to move in turn, in order."""
         sp = self.space
         tables = self._tables()
         regions = sp.nrx * sp.nry
