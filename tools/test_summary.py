@@ -57,10 +57,20 @@ class Tally:
 
 
 def failure_text(element):
-    """The last WHY_LINES non-blank lines of a JUnit failure or error: its message attribute
-    and its text (pytest puts the traceback in the text, rosunit the message there too)."""
+    """The end of a JUnit failure or error as Python prints one: the last frame, then the
+    exception and its message, WHY_LINES lines at most. pytest's report ends with its message
+    already; rosunit writes the message first and the stack after it (and no message
+    attribute), so there the message is moved below the stack's last frame."""
     text = '\n'.join(part for part in (element.get('message', ''), element.text or '') if part)
     lines = [line.rstrip() for line in text.splitlines() if line.strip()]
+    frames = [i for i, line in enumerate(lines) if line.lstrip().startswith('File "')]
+    if (element.get('message') is None and frames and frames[0] > 0
+            and not lines[0].startswith('Traceback')):
+        message = lines[:frames[0]]
+        message[0] = '%s: %s' % (element.get('type', 'Error'), message[0])
+        message = message[-WHY_LINES:]
+        last_frame = lines[frames[-1]:][:WHY_LINES - len(message)]
+        lines = last_frame + message
     return '\n'.join(lines[-WHY_LINES:])
 
 

@@ -67,8 +67,11 @@ def missing_from_view(shot):
     view = render_area(shot, FLOOR_RGB255, FLOOR_TOLERANCE)
     if view.size == 0:
         return ["rviz's 3D view (no floor plan grey)"]
-    missing = (missing_colours(view, MAP_COLOURS, MIN_MAP_PIXELS)
-               + missing_colours(view, ROBOT_COLOURS, MIN_ROBOT_PIXELS))
+    colours = {**MAP_COLOURS, **ROBOT_COLOURS}
+    # Each with its count: a failure says how far short it fell.
+    missing = ['%s (%d px)' % (name, colour_pixels(view, colours[name]))
+               for name in (missing_colours(view, MAP_COLOURS, MIN_MAP_PIXELS)
+                            + missing_colours(view, ROBOT_COLOURS, MIN_ROBOT_PIXELS))]
     scans = sum(colour_pixels(view, rgb) for rgb in ROBOT_COLOURS.values())
     if scans < MIN_SCAN_PIXELS:
         missing.append('the scans (%d px of the robots\' colours, expected %d)'

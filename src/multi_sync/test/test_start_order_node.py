@@ -7,6 +7,7 @@ import rospy
 import rostest
 from course_common.rospy_internals import caller_id
 from course_common.testing import wait_for
+from course_common.testing.master import LostSubscriber
 from team_watch import NodeProcess, TeamWatch
 
 from multi_sync.msg import RobotStatus
@@ -16,6 +17,8 @@ START_S = 60.0
 EVENT_S = 30.0
 # The monitor's line for a ready report after GO (it does not send GO again).
 LATE_READY = 'Robot %d reported ready after GO'
+# The WARN of a node that registered its team_status publisher again for a lost subscriber.
+HEALED = '%s: /lost_listener subscribe to /team_status but never connected: registered it again'
 
 
 def status(robot_id, is_ready=True, frame_id=''):
@@ -122,6 +125,7 @@ class TestStartOrder(unittest.TestCase):
                  'the monitor to subscribe to /race/team_status')
         pub.publish(status(0))
         wait_for(lambda: monitor.printed('Robot 0 is ready!'), EVENT_S, 'robot 0 counted')
+        pub.publish(status(0))  # re-announced while GO waits for this node: not "after GO"
         sub = rospy.Subscriber('/race/team_status', RobotStatus,
                                lambda m: m.header.frame_id == 'monitor' and gos.append(m),
                                queue_size=10, tcp_nodelay=True)
@@ -131,11 +135,32 @@ class TestStartOrder(unittest.TestCase):
             wait_for(lambda: monitor.printed(LATE_READY % 0) or len(gos) > 1, EVENT_S,
                      'the monitor to handle the re-announcement after GO')
             self.assertEqual(len(gos), 1, 'one GO, heard by every robot')
-            self.assertTrue(monitor.printed('All robots GO!'), monitor.lines())
+            go_line = monitor.wait_line('All robots GO!', EVENT_S)
+            lines = monitor.lines()
+            self.assertEqual([line for line in lines[:lines.index(go_line)]
+                              if LATE_READY % 0 in line], [], lines)
         finally:
             sub.unregister()
             pub.unregister()
         self.assertEqual(monitor.stop(), 0, monitor.lines())
+
+    def test_lost_team_status_subscribers_get_the_publishers_again(self):
+        # A subscriber the master lists on team_status that never connected (a connection
+        # lost on a loaded machine) would never hear the robot's ready, or the monitor's GO:
+        # both register their publisher again, and the master tells it once more.
+        watch = TeamWatch(5)
+        wait_for(watch.have_poses, START_S, 'the five turtles')
+        robot = self.start('move_robot', '3')
+        monitor = self.start('monitor', '5')  # one robot of five: no GO, robot 3 keeps waiting
+        wait_for(lambda: monitor.printed('Robot 3 is ready!'), START_S, 'robot 3 counted')
+        with LostSubscriber('/lost_listener', '/team_status', 'multi_sync/RobotStatus'):
+            for proc, who in ((robot, 'Robot 3'), (monitor, 'monitor')):
+                proc.wait_line(HEALED % who, EVENT_S)
+        self.assertFalse(monitor.printed('All robots GO!'), monitor.lines())
+        for proc, who in ((robot, 'Robot 3'), (monitor, 'monitor')):
+            # Connected subscribers (this test, the robot, the monitor) are never named.
+            self.assertEqual([line for line in proc.lines_with('never connected')
+                              if HEALED % who not in line], [], proc.lines())
 
     def test_monitor_ignores_bad_statuses(self):
         # A monitor of two in its own namespace, fed by hand on /bad/team_status.

@@ -4,7 +4,7 @@ import time
 
 import rospy
 from course_common.command_line import parse_argv_or_exit
-from course_common.publishers import OnNewSubscriber, unqueued_publisher
+from course_common.publishers import LostSubscribers, OnNewSubscriber, unqueued_publisher
 from course_common.robot_ids import parse_team_size
 from course_common.rospy_internals import caller_id, connection_ids
 from course_common.startup import init_node, quiet_at_shutdown
@@ -31,6 +31,9 @@ CONNECT_WAIT_S = 3.0
 READY_SETTLE_S = 0.5
 # How often a pending GO checks its conditions and the deadline above (wall clock).
 CHECK_PERIOD_S = 0.05
+# How often the monitor looks for subscribers that never connected to its team_status (wall
+# clock; LostSubscribers asks the master at most every 5 s of these).
+HEAL_PERIOD_S = 1.0
 
 
 class MonitorNode:
@@ -50,6 +53,8 @@ class MonitorNode:
             and to each later subscriber as it connects:
             every subscriber gets exactly one GO (multi_sync.go_latch says why this is not
             rospy's latch). A ready report after GO is logged and not answered.
+            A subscriber the master lists that never connected (a lost connection on a
+            loaded machine: it would never hear GO) gets the publisher registered again.
     Services: none.
     Parameters: none (the team size is argv[1], as in the lesson).
     """
@@ -63,6 +68,10 @@ class MonitorNode:
         # Synchronous: GO goes out to every robot from this thread in one pass.
         self._pub = unqueued_publisher('team_status', RobotStatus,
                                        subscriber_listener=OnNewSubscriber(self._on_subscriber))
+        # A robot whose connection to this publisher was lost would wait for GO for ever.
+        self._lost = LostSubscribers(self._pub, describe='monitor: %s')
+        threading.Thread(target=quiet_at_shutdown(self._heal_connections), name='heal',
+                         daemon=True).start()
         rospy.loginfo('Waiting for robots to connect...')
         self._sub = rospy.Subscriber('team_status', RobotStatus, self._on_status,
                                      queue_size=STATUS_QUEUE, tcp_nodelay=True)
@@ -121,6 +130,13 @@ class MonitorNode:
                 return
             time.sleep(CHECK_PERIOD_S)
 
+    def _heal_connections(self):
+        """For the node's life: subscribers lost to team_status get it registered again.
+        A thread on the wall clock: on sim time a rospy.Timer waits for the first /clock."""
+        while not rospy.is_shutdown():
+            self._lost.check()
+            time.sleep(HEAL_PERIOD_S)
+
     def _on_status(self, msg):
         sender = caller_id(msg)
         with self._lock:
@@ -129,6 +145,10 @@ class MonitorNode:
                 now = time.monotonic()
                 self._go_not_before = now + READY_SETTLE_S
                 self._go_deadline = now + CONNECT_WAIT_S
+            elif outcome is Outcome.AFTER_GO and self._go_deadline is not None:
+                # GO is pending (settling, or waiting for connections): a robot re-announcing
+                # is not late yet, and "after GO" would come before "All robots GO!".
+                outcome = Outcome.DUPLICATE
         if outcome in (Outcome.NEW_READY, Outcome.TEAM_READY):
             rospy.loginfo('Robot %d is ready!', msg.robot_id)
         if outcome is Outcome.TEAM_READY:

@@ -46,6 +46,8 @@ class MoveRobotNode:
         robot_<id>/cmd_vel (geometry_msgs/Twist): speed_mps forward at rate_hz after GO,
             0 when stopped by the bumper or a teammate, and 0 on shutdown.
         team_status (multi_sync/RobotStatus): ready status, robot_id = id, is_ready = true.
+        A subscriber of cmd_vel, or before GO of team_status, that the master lists but
+        that never connected gets the publisher registered again (WARN).
         team_positions (multi_sync/RobotPosition): own pose at rate_hz after GO.
     Services: none.
     Parameters (private):
@@ -96,6 +98,9 @@ class MoveRobotNode:
         self._pos_pub = rospy.Publisher('team_positions', RobotPosition, queue_size=10)
         self._status_pub = rospy.Publisher('team_status', RobotStatus, queue_size=10,
                                            subscriber_listener=OnNewSubscriber(self.announce_to))
+        # A monitor that missed this publisher would never hear the robot ready: no GO.
+        self._status_lost = LostSubscribers(self._status_pub,
+                                            describe='Robot %d: %%s' % robot_id)
         rospy.on_shutdown(self._stop)
         # reset=True: on sim time a restarted stageros sends /clock back to its start, which
         # would end a plain rospy.Timer (ROSTimeMovedBackwardsException).
@@ -161,6 +166,7 @@ class MoveRobotNode:
         if go:
             return
         self._cmd_lost.check()
+        self._status_lost.check()
         missing = self._sensors.missing()
         if missing:
             rospy.logwarn_throttle(5.0, 'Robot %d: %s' % (self._id, missing))

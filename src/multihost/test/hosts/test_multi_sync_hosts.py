@@ -7,7 +7,7 @@ commands, GO, warnings), as a user there.
 import time
 
 import pytest
-from course_common.testing import wait_for
+from course_common.testing import WaitError, wait_for
 from multihost.lessons import MULTI_SYNC_ROBOTS, STAGE, TURTLESIM, start_multi_sync
 
 GO_S = 30.0        # monitor start -> GO, with the monitor's own start-up
@@ -49,8 +49,12 @@ def _go_wall_time(probe, simulator):
 
 
 def _all_moving_after_go(team, probe, simulator):
-    go = wait_for(lambda: _go_wall_time(probe, simulator), GO_S,
-                  'GO from the monitor (%s)' % team.log_path('monitor'))
+    try:
+        go = wait_for(lambda: _go_wall_time(probe, simulator), GO_S,
+                      'GO from the monitor (%s)' % team.log_path('monitor'))
+    except WaitError as err:  # the monitor's last words: the end of a CI log keeps them
+        raise WaitError('%s; the monitor said last:\n%s'
+                        % (err, team.tail('monitor', 3).rstrip())) from None
     firsts = {r: wait_for(lambda r=r: probe.first_move(r), MOVE_S, 'first command of ' + r)
               for r in MULTI_SYNC_ROBOTS}
     for robot in MULTI_SYNC_ROBOTS:

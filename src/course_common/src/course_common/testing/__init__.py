@@ -5,10 +5,10 @@ check_refused (bad command lines, side by side), rosrun_once (a rosrun command l
 test runs many times, looked up once), and the process helpers tests use
 (ChildProcess, spawn, Xvfb, free_port, cpu_ticks, rss_mb, from course_common.processes, .xvfb
 and .ports, where tools use them too). Beside it: recorders (topics and /rosout), master
-(queries of the graph, a private roscore), master_calls (a master that counts its calls),
-views (tf checks), x_windows (the windows on an X display, and their close button); each
-simulator's own helpers live with it (turtle_lite.testing, stage_lite.testing). Production
-code imports course_common.waiting, .processes, .ports and .xvfb, never this.
+(queries of the graph, a private roscore, a lost subscriber), master_calls (a master that
+counts its calls), views (tf checks), x_windows (the windows on an X display, and their close
+button); each simulator's own helpers live with it (turtle_lite.testing, stage_lite.testing).
+Production code imports course_common.waiting, .processes, .ports and .xvfb, never this.
 """
 import functools
 import importlib.metadata

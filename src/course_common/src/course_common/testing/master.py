@@ -1,11 +1,14 @@
-"""What the master says about the graph, for tests and benchmarks; and a private roscore.
+"""What the master says about the graph, for tests and benchmarks; a private roscore; and a
+subscriber whose connection was lost (LostSubscriber).
 
 Each query takes the master's system state (getSystemState's [publishers, subscribers,
 services], each a list of [name, [node, ...]]) if the caller has one, else asks the master as
 this node (rosgraph.Master(rospy.get_name())); the pure part is unit-tested without a master.
 """
 import os
+import threading
 import xmlrpc.client
+from xmlrpc.server import SimpleXMLRPCServer
 
 import rosgraph
 import rosnode
@@ -112,6 +115,41 @@ def kill_node(name):
     _, failed = rosnode.kill_nodes([name])
     if failed:
         raise AssertionError('rosnode kill %s failed' % name)
+
+
+class LostSubscriber:
+    """A subscriber whose connection was lost: registered at the master for a topic, it
+    records the master's publisherUpdate calls (its XML-RPC slave API) and connects to
+    nobody. A context manager: registered on entry, unregistered and stopped on exit."""
+
+    def __init__(self, name, topic, msg_type):
+        self.name, self.topic, self.msg_type = name, topic, msg_type
+        self.updates = []  # (topic, [publisher URI, ...]) per publisherUpdate, in order
+        self._server = SimpleXMLRPCServer(('127.0.0.1', 0), logRequests=False, allow_none=True)
+        self._server.register_function(self._publisher_update, 'publisherUpdate')
+        self._server.register_function(lambda caller_id: [1, '', os.getpid()], 'getPid')
+        self.uri = 'http://127.0.0.1:%d/' % self._server.server_address[1]
+        self._master = rosgraph.Master(name)
+
+    def _publisher_update(self, caller_id, topic, publishers):
+        self.updates.append((topic, list(publishers)))
+        return [1, '', 0]
+
+    def told_of(self, publisher_uri):
+        """True once the master has sent a publisher list for the topic naming publisher_uri."""
+        return any(topic == self.topic and publisher_uri in uris for topic, uris in self.updates)
+
+    def __enter__(self):
+        threading.Thread(target=self._server.serve_forever, daemon=True).start()
+        self._master.registerSubscriber(self.topic, self.msg_type, self.uri)
+        return self
+
+    def __exit__(self, *exc):
+        try:
+            self._master.unregisterSubscriber(self.topic, self.uri)
+        finally:
+            self._server.shutdown()
+            self._server.server_close()
 
 
 class Roscore(ChildProcess):
