@@ -142,6 +142,36 @@ def test_ranger_noise_draws_as_stage_does_beam_by_beam():
     assert got[1] == 5.0 and got[4] == 5.0                  # a miss reads range max
 
 
+@pytest.mark.parametrize('apply', ['apply', 'apply_rows', 'gaussian'])
+def test_a_spare_drawn_without_noise_is_the_one_a_noisy_beam_then_takes(apply):
+    # A sensor without noise (const 0, prop 0 or not) draws the gaussian's pair and keeps it
+    # as drawn; the noisy beam after it (another sensor's, or the next update's) takes it, as
+    # it takes Stage's spare: the same ranges to the last bit, the stream where Stage's is.
+    quiet = np.array([1.0, 1.5])          # two hits: one draws the pair, one uses it up...
+    first = np.array([0.7])               # ...so this one draws a pair and keeps its spare
+    noisy = np.array([2.0, 0.4, 5.0, 1.1])
+    noise = RangerNoise(Random(7))
+    got = [noise.apply(quiet, 5.0, (0.0, 0.02, 0.0)), noise.apply(first, 5.0, (0.0, 0.0, 0.0))]
+    if apply == 'apply':
+        got.append(noise.apply(noisy, 5.0, (0.01, 0.05, 0.0)))
+    elif apply == 'apply_rows':
+        rows = noisy.copy()
+        noise.apply_rows(rows, np.array([0, 4], np.int64), np.zeros(1, np.int64),
+                         np.array([5.0]), np.array([0.05]), np.array([0.01]))
+        got.append(rows)
+    else:  # beam by beam (a sensor with angular noise): the angle's draw, then the range's
+        got.append(np.array([(noise.angle_noise(), noise.range_noise(r, 5.0, (0.01, 0.05, 0.0)))[1]
+                             for r in noisy]))
+    reference, spare = Random(7), []
+    want = [_stage_noise(reference, spare, quiet, 5.0, 0.02, 0.0),
+            _stage_noise(reference, spare, first, 5.0, 0.0, 0.0),
+            _stage_noise(reference, spare, noisy, 5.0, 0.05, 0.01)]
+    for g, w in zip(got, want, strict=True):
+        assert g.tolist() == pytest.approx(w, abs=0, rel=1e-15)
+    assert got[2].tolist() != noisy.tolist()      # the noise is there
+    assert noise.random.random() == reference.random()
+
+
 def test_a_scan_without_noise_still_moves_the_stream_as_stages_does():
     stream = Random()
     out = RangerNoise(stream).apply(np.array([1.0, 8.0, 2.0]), 8.0, (0.0, 0.0, 0.0))

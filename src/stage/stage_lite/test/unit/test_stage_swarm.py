@@ -63,14 +63,47 @@ def test_the_page_pool_grows_as_regions_fill_and_changes_nothing(tmp_path, monke
     sp = grown.space
     pages = sp.dyn_head.shape[0]
     in_use = int((sp.reg_dyn >= 0).sum())
-    # it grew from one page, by doubling: at most twice what it had to hold, and far below
-    # the worst case (every block in as many regions as its size allows, in both layers)
+    # it grew from one page, far below the worst case (every block in as many regions as
+    # its size allows, in both layers)
     assert pages > 1 and in_use == pages - int(sp.free_state[0])
     assert pages < int(sp.blk_pages.sum()) / 4
     # free pages are those no region holds, each once
     free = sp.page_free[:int(sp.free_state[0])]
     assert len(set(free.tolist())) == len(free)
     assert not set(free.tolist()) & set(sp.reg_dyn[sp.reg_dyn >= 0].tolist())
+
+
+def test_the_page_pool_grows_by_a_quarter_and_keeps_every_page(tmp_path, monkeypatch):
+    sp = run(swarm_world.write_worlds(str(tmp_path), (20,))[20], 0).space
+    held = sp.dyn_head.copy()
+    sizes = [sp.dyn_head.shape[0]]
+    while sizes[-1] < 2000:
+        sp.grow_pages()
+        sizes.append(sp.dyn_head.shape[0])
+    for have, now in zip(sizes, sizes[1:]):
+        assert now - have == max(have // 4, space_mod.PAGES_GROWN_AT_LEAST)
+    assert sizes[-1] < 2500             # doubling would have reached up to 4,000
+    assert np.array_equal(sp.dyn_head[:held.shape[0]], held)
+    assert (sp.dyn_head[held.shape[0]:] == -1).all()
+    free = sp.page_free[:int(sp.free_state[0])].tolist()
+    assert len(free) == len(set(free)) and set(range(held.shape[0], sizes[-1])) <= set(free)
+    sp.grow_pages(1000)                 # what a plan needs at once comes at once
+    assert sp.dyn_head.shape[0] == sizes[-1] + 1000
+    # grown in place while nothing else holds the pool; copied while something does (a
+    # kernel's arguments), which keeps what it holds intact
+    pool = sp.dyn_head
+    pool[0, 0, 0] = 7
+    sp.grow_pages()
+    assert sp.dyn_head is not pool and sp.dyn_head[0, 0, 0] == 7 == pool[0, 0, 0]
+    assert pool.shape[0] == sizes[-1] + 1000
+    del pool
+
+    def no_copy(*args, **kwargs):
+        raise AssertionError('the pool was copied, not grown in place')
+    monkeypatch.setattr(np, 'full', no_copy)
+    sp.grow_pages()
+    assert sp.dyn_head[0, 0, 0] == 7 and (sp.dyn_head[-1] == -1).all()
+    assert sp.dyn_head.flags.owndata and sp.dyn_head.flags.c_contiguous
 
 
 def test_robots_started_inside_bodies_are_named_and_stay_put(tmp_path):

@@ -121,13 +121,17 @@ class _Batch:
             plan['safe'][i] = s.law.safe_angle
             plan['row'][i] = row
         plan['beams'], plan['goal'], plan['mode'] = arrays
+        # The headings' cosines and sines once, from the kernel's own math.cos and math.sin:
+        # the same values sensors_sum works out at every call.
+        plan['cos'], plan['sin'] = heading_trig(plan['headings'])
         return plan
 
     @staticmethod
     def run(plan, rows):
-        return _steer_all(rows, plan['beams'], plan['first'], plan['headings'], plan['count'],
-                          plan['clear_k'], plan['clear_least'], plan['clear_n'], plan['speed'],
-                          plan['gain'], plan['safe'], plan['row'], plan['goal'], plan['mode'])
+        return _steer_all(rows, plan['beams'], plan['first'], plan['cos'], plan['sin'],
+                          plan['count'], plan['clear_k'], plan['clear_least'], plan['clear_n'],
+                          plan['speed'], plan['gain'], plan['safe'], plan['row'], plan['goal'],
+                          plan['mode'])
 
 
 BATCH = _Batch()
@@ -135,7 +139,19 @@ Steering.batch = BATCH
 
 
 @njit(cache=True)
-def _steer_all(rows, beams, first, headings, count, clear_k, clear_least, clear_n, speed,
+def heading_trig(headings):
+    """(cos, sin) of each heading, as sensors_sum's math.cos and math.sin give them."""
+    cos = np.empty_like(headings)
+    sin = np.empty_like(headings)
+    for i in range(headings.shape[0]):
+        for k in range(headings.shape[1]):
+            cos[i, k] = math.cos(headings[i, k])
+            sin[i, k] = math.sin(headings[i, k])
+    return cos, sin
+
+
+@njit(cache=True)
+def _steer_all(rows, beams, first, cos, sin, count, clear_k, clear_least, clear_n, speed,
                gain, safe, row, goal, mode):
     """steer() of the steerings `rows` in turn; returns how many were done (one whose
     command would not be finite is left, with those after it, to be called on its own:
@@ -143,7 +159,7 @@ def _steer_all(rows, beams, first, headings, count, clear_k, clear_least, clear_
     n = rows.shape[0]
     for j in range(n):
         i = rows[j]
-        dx, dy = sensors_sum(beams, first[i], headings[i], count[i])
+        dx, dy = sensors_sum_trig(beams, first[i], cos[i], sin[i], count[i])
         if dx == 0 or dy == 0:
             continue
         resultant = math.atan2(dy, dx)
@@ -156,6 +172,18 @@ def _steer_all(rows, beams, first, headings, count, clear_k, clear_least, clear_
             return j
         set_velocity(goal, mode, row[i], forward, turn)
     return n
+
+
+@njit(cache=True)
+def sensors_sum_trig(beams, first, cos, sin, count):
+    """sensors_sum with the headings' cosines and sines given (heading_trig)."""
+    dx = 0.0
+    dy = 0.0
+    for k in range(count):
+        r = beams[first[k]]
+        dx += r * cos[k]
+        dy += r * sin[k]
+    return dx, dy
 
 
 @njit(cache=True)

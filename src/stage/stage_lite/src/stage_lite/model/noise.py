@@ -39,13 +39,34 @@ def _simple_noise(table, pointers):
     return 2.0 * ((_random(table, pointers) % 1000) * 0.001 - 0.5)
 
 
+# spare[0]: no spare (0), a spare ready (COOKED: spare[1] = -2 log(rand1), spare[2] the
+# angle), or a spare still as its two draws (RAW: spare[1], spare[2] as random() gave them).
+# A beam whose noise has no gaussian part (const 0) only moves the stream: it keeps its
+# pair raw, and the logarithm and the angle are worked out only if a noisy beam takes it.
+COOKED = 1.0
+RAW = 2.0
+
+
+@njit(cache=True)
+def _cook(spare):
+    """A raw spare made ready, with generateGaussianNoise's own operations."""
+    if spare[0] == RAW:
+        rand1 = spare[1] / RAND_MAX
+        if rand1 < 1e-100:
+            rand1 = 1e-100
+        spare[1] = -2.0 * math.log(rand1)
+        spare[2] = (spare[2] / RAND_MAX) * TWO_PI
+        spare[0] = COOKED
+
+
 @njit(cache=True)
 def _gaussian(table, pointers, spare, variance):
     """generateGaussianNoise: spare = [have one, rand1, rand2]."""
     if spare[0] != 0.0:
+        _cook(spare)
         spare[0] = 0.0
         return math.sqrt(variance * spare[1]) * math.sin(spare[2])
-    spare[0] = 1.0
+    spare[0] = COOKED
     rand1 = _random(table, pointers) / RAND_MAX
     if rand1 < 1e-100:
         rand1 = 1e-100
@@ -71,7 +92,9 @@ def _apply_rows(table, pointers, spare, ranges, offsets, rows, range_max, propor
     hit, range + range * prop * _simple_noise() + _gaussian(const) (C++ evaluates the sum's
     calls left to right here, GCC: the uniform first); a miss reads range max and draws
     nothing more. The stream's pointers are kept in registers between draws (written back
-    at the end), not in memory at every draw: the same draws, in the same order."""
+    at the end), not in memory at every draw: the same draws, in the same order. With const
+    0 the gaussian adds a zero, which changes no range (ranges are not -0.0): its draws are
+    made and kept raw, its logarithm and angle left to a noisy beam that takes the spare."""
     f = pointers[0]
     r = pointers[1]
     for i in rows:
@@ -84,11 +107,24 @@ def _apply_rows(table, pointers, spare, ranges, offsets, rows, range_max, propor
             if x < rmax:
                 v, f, r = _next(table, f, r)
                 uniform = 2.0 * ((v % 1000) * 0.001 - 0.5)     # _simple_noise
+                if variance == 0.0:                          # _gaussian's draws only
+                    if spare[0] != 0.0:
+                        spare[0] = 0.0
+                    else:
+                        v1, f, r = _next(table, f, r)
+                        v2, f, r = _next(table, f, r)
+                        spare[0] = RAW
+                        spare[1] = v1
+                        spare[2] = v2
+                    if prop != 0.0:
+                        ranges[t] = x + x * prop * uniform
+                    continue
                 if spare[0] != 0.0:                           # _gaussian
+                    _cook(spare)
                     spare[0] = 0.0
                     gauss = math.sqrt(variance * spare[1]) * math.sin(spare[2])
                 else:
-                    spare[0] = 1.0
+                    spare[0] = COOKED
                     v, f, r = _next(table, f, r)
                     rand1 = v / RAND_MAX
                     if rand1 < 1e-100:
