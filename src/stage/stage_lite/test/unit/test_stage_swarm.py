@@ -80,7 +80,7 @@ def test_the_page_pool_grows_by_a_quarter_and_keeps_every_page(tmp_path, monkeyp
     while sizes[-1] < 2000:
         sp.grow_pages()
         sizes.append(sp.dyn_head.shape[0])
-    for have, now in zip(sizes, sizes[1:]):
+    for have, now in zip(sizes[:-1], sizes[1:], strict=True):
         assert now - have == max(have // 4, space_mod.PAGES_GROWN_AT_LEAST)
     assert sizes[-1] < 2500             # doubling would have reached up to 4,000
     assert np.array_equal(sp.dyn_head[:held.shape[0]], held)
