@@ -6,10 +6,12 @@
 
 STAGE is the real Stage 4.3.0's program (default /work/scratch/peer/install/bin/stage, its
 libstage found through LD_LIBRARY_PATH=<its prefix>/lib), DIR a copy of Stage's `worlds/`
-folder (default /work/scratch/worlds, with `benchmark/`); without either the bench says what
-is missing and skips (exit 0). stage_lite's is `stage` from the sourced workspace (or
---ours, a command line); --before adds another stage_lite to the rotation (a command line
-running an earlier tree, say), to compare before and after in one run.
+folder (default /work/scratch/worlds, with `benchmark/`; its NAME_run.world are NAME.world
+with `paused 0`, as the golden captures name them, which each timed copy sets anyway);
+without either the bench says what is missing and skips (exit 0). stage_lite's is `stage`
+from the sourced workspace (or --ours, a command line); --before adds another stage_lite to
+the rotation (a command line running an earlier tree, say), to compare before and after in
+one run.
 
 The worlds (WORLDS): simple (two wanderers), autolab_run (wanderers on Stage's autolab
 plan), pioneer_flocking_run (100 pioneers, sonars and fiducial finders), SFU_run (94 such
