@@ -44,6 +44,13 @@ START_DEADLINE_S = 240.0
 OURS = ['rosrun', 'stage_ros', 'stageros']
 NODE = ['rosrun', 'swarm', 'swarm_controller']
 FIRST_SCANS_LINE = "every robot's first scan received"
+#: runs of one simulator in a row before the bench gives up (the real stageros dies now and
+#: then of a segmentation fault in Stage's worker threads: its run is made again, and said)
+ATTEMPTS = 3
+
+
+class EndedError(RuntimeError):
+    """stageros or the node ended during a run."""
 
 
 class Bench(stage_bench.Bench):
@@ -77,11 +84,17 @@ class Bench(stage_bench.Bench):
             time.sleep(window_s)
             sim1, wall1 = self.clock()
             cpu1 = (stage_bench.cpu_s(sim.pid), stage_bench.cpu_s(node.pid))
+            for proc, who in ((sim, 'stageros'), (node, 'the node')):
+                # its clock or its figures stopped in the window (an ended process's status
+                # has no VmHWM)
+                if not proc.alive() or peak_rss_mb(proc.pid) is None:
+                    raise EndedError('%s ended during the run:\n%s' % (who, proc.tail()))
+            rss = (peak_rss_mb(sim.pid), peak_rss_mb(node.pid))
             wall = wall1 - wall0
             spreads = [line for line in node.lines() if 'spread' in line]
             return dict(rtf=(sim1 - sim0) / wall, sim_cores=(cpu1[0] - cpu0[0]) / wall,
-                        node_cores=(cpu1[1] - cpu0[1]) / wall, sim_rss=peak_rss_mb(sim.pid),
-                        node_rss=peak_rss_mb(node.pid), start=start_s,
+                        node_cores=(cpu1[1] - cpu0[1]) / wall, sim_rss=rss[0],
+                        node_rss=rss[1], start=start_s,
                         spread=spreads[-1].split('spread ')[-1] if spreads else '-')
         finally:
             node.stop()
@@ -101,7 +114,16 @@ def measure(bench, sides, path, robots, args):
         for name, command, env in sides:
             print('bench: %d swarmbots, %s, run %d of %d' % (robots, name, k + 1, args.runs),
                   flush=True)
-            r = bench.run(command, path, robots, args.window, env, not args.without_node)
+            for attempt in range(ATTEMPTS):
+                try:
+                    r = bench.run(command, path, robots, args.window, env,
+                                  not args.without_node)
+                    break
+                except EndedError as died:
+                    if attempt == ATTEMPTS - 1:
+                        raise SystemExit('bench: %s: %s' % (name, died)) from None
+                    print('bench: %s: %s; once more' % (name, str(died).splitlines()[0]),
+                          flush=True)
             print('bench:   ' + ', '.join('%s %s' % (key, '%.3g' % v if isinstance(v, float)
                                                      else v) for key, v in r.items()),
                   flush=True)
