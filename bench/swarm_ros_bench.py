@@ -84,12 +84,12 @@ class Bench(stage_bench.Bench):
             time.sleep(window_s)
             sim1, wall1 = self.clock()
             cpu1 = (stage_bench.cpu_s(sim.pid), stage_bench.cpu_s(node.pid))
-            for proc, who in ((sim, 'stageros'), (node, 'the node')):
+            rss = (peak_rss_mb(sim.pid), peak_rss_mb(node.pid))
+            for proc, who, peak in ((sim, 'stageros', rss[0]), (node, 'the node', rss[1])):
                 # its clock or its figures stopped in the window (an ended process's status
                 # has no VmHWM)
-                if not proc.alive() or peak_rss_mb(proc.pid) is None:
+                if peak is None or not proc.alive():
                     raise EndedError('%s ended during the run:\n%s' % (who, proc.tail()))
-            rss = (peak_rss_mb(sim.pid), peak_rss_mb(node.pid))
             wall = wall1 - wall0
             spreads = [line for line in node.lines() if 'spread' in line]
             return dict(rtf=(sim1 - sim0) / wall, sim_cores=(cpu1[0] - cpu0[0]) / wall,

@@ -31,9 +31,6 @@ CONNECT_WAIT_S = 3.0
 READY_SETTLE_S = 0.5
 # How often a pending GO checks its conditions and the deadline above (wall clock).
 CHECK_PERIOD_S = 0.05
-# How often the monitor looks for subscribers that never connected to its team_status (wall
-# clock; LostSubscribers asks the master at most every 5 s of these).
-HEAL_PERIOD_S = 1.0
 
 
 class MonitorNode:
@@ -134,8 +131,8 @@ class MonitorNode:
         """For the node's life: subscribers lost to team_status get it registered again.
         A thread on the wall clock: on sim time a rospy.Timer waits for the first /clock."""
         while not rospy.is_shutdown():
+            time.sleep(self._lost.period_s)   # check() asks the master at most this often
             self._lost.check()
-            time.sleep(HEAL_PERIOD_S)
 
     def _on_status(self, msg):
         sender = caller_id(msg)

@@ -60,28 +60,44 @@ def _cook(spare):
 
 
 @njit(cache=True)
-def _gaussian(table, pointers, spare, variance):
-    """generateGaussianNoise: spare = [have one, rand1, rand2]."""
-    if spare[0] != 0.0:
-        _cook(spare)
-        spare[0] = 0.0
-        return math.sqrt(variance * spare[1]) * math.sin(spare[2])
-    spare[0] = COOKED
-    rand1 = _random(table, pointers) / RAND_MAX
-    if rand1 < 1e-100:
-        rand1 = 1e-100
-    rand1 = -2.0 * math.log(rand1)
-    spare[1] = rand1
-    spare[2] = (_random(table, pointers) / RAND_MAX) * TWO_PI
-    return math.sqrt(variance * rand1) * math.cos(spare[2])
-
-
-@njit(cache=True)
 def _next(table, f, r):
     """_random with the stream's pointers as values: (value, front, rear) after the draw."""
     value = (table[f] + table[r]) & 0xFFFFFFFF
     table[f] = value
     return value >> 1, (f + 1) % 31, (r + 1) % 31
+
+
+@njit(cache=True)
+def _gaussian_at(table, f, r, spare, variance):
+    """generateGaussianNoise(variance) with the stream's pointers as values: (noise, front,
+    rear). spare = [have one, rand1, rand2]: the pair's second value kept for the next call.
+    With variance 0 the noise is a zero (Stage's sqrt(0 * rand1) times a cosine or sine),
+    which adds nothing to a range (ranges are not -0.0): 0.0, the pair left raw."""
+    if spare[0] != 0.0:
+        if variance == 0.0:
+            spare[0] = 0.0
+            return 0.0, f, r
+        _cook(spare)
+        spare[0] = 0.0
+        return math.sqrt(variance * spare[1]) * math.sin(spare[2]), f, r
+    v1, f, r = _next(table, f, r)
+    v2, f, r = _next(table, f, r)
+    spare[0] = RAW
+    spare[1] = v1
+    spare[2] = v2
+    if variance == 0.0:
+        return 0.0, f, r
+    _cook(spare)
+    return math.sqrt(variance * spare[1]) * math.cos(spare[2]), f, r
+
+
+@njit(cache=True)
+def _gaussian(table, pointers, spare, variance):
+    """generateGaussianNoise, the stream's pointers in memory (_gaussian_at)."""
+    noise, f, r = _gaussian_at(table, pointers[0], pointers[1], spare, variance)
+    pointers[0] = f
+    pointers[1] = r
+    return noise
 
 
 @njit(cache=True)
@@ -92,9 +108,7 @@ def _apply_rows(table, pointers, spare, ranges, offsets, rows, range_max, propor
     hit, range + range * prop * _simple_noise() + _gaussian(const) (C++ evaluates the sum's
     calls left to right here, GCC: the uniform first); a miss reads range max and draws
     nothing more. The stream's pointers are kept in registers between draws (written back
-    at the end), not in memory at every draw: the same draws, in the same order. With const
-    0 the gaussian adds a zero, which changes no range (ranges are not -0.0): its draws are
-    made and kept raw, its logarithm and angle left to a noisy beam that takes the spare."""
+    at the end), not in memory at every draw: the same draws, in the same order."""
     f = pointers[0]
     r = pointers[1]
     for i in rows:
@@ -107,33 +121,7 @@ def _apply_rows(table, pointers, spare, ranges, offsets, rows, range_max, propor
             if x < rmax:
                 v, f, r = _next(table, f, r)
                 uniform = 2.0 * ((v % 1000) * 0.001 - 0.5)     # _simple_noise
-                if variance == 0.0:                          # _gaussian's draws only
-                    if spare[0] != 0.0:
-                        spare[0] = 0.0
-                    else:
-                        v1, f, r = _next(table, f, r)
-                        v2, f, r = _next(table, f, r)
-                        spare[0] = RAW
-                        spare[1] = v1
-                        spare[2] = v2
-                    if prop != 0.0:
-                        ranges[t] = x + x * prop * uniform
-                    continue
-                if spare[0] != 0.0:                           # _gaussian
-                    _cook(spare)
-                    spare[0] = 0.0
-                    gauss = math.sqrt(variance * spare[1]) * math.sin(spare[2])
-                else:
-                    spare[0] = COOKED
-                    v, f, r = _next(table, f, r)
-                    rand1 = v / RAND_MAX
-                    if rand1 < 1e-100:
-                        rand1 = 1e-100
-                    rand1 = -2.0 * math.log(rand1)
-                    spare[1] = rand1
-                    v, f, r = _next(table, f, r)
-                    spare[2] = (v / RAND_MAX) * TWO_PI
-                    gauss = math.sqrt(variance * rand1) * math.cos(spare[2])
+                gauss, f, r = _gaussian_at(table, f, r, spare, variance)
                 ranges[t] = x + x * prop * uniform + gauss
     pointers[0] = f
     pointers[1] = r

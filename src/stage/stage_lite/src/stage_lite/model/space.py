@@ -165,10 +165,14 @@ class Space:
         return int(self.blk_pages[blocks].sum()) > int(self.free_state[0])
 
     def grow_pages(self, wanted=0):
-        """Adds free pages to the pool: at least `wanted`, else a quarter of what it has (at
-        least PAGES_GROWN_AT_LEAST)."""
+        """Adds free pages to the pool: at least `wanted`, and a pool that has pages grows by
+        a quarter of them at least (at least PAGES_GROWN_AT_LEAST); an empty pool takes
+        `wanted` (the world's worst case, or PAGES_AT_START), one page at least."""
         have = self.dyn_head.shape[0]
-        added = max(wanted, have // GROWTH_DIVISOR, PAGES_GROWN_AT_LEAST)
+        if have:
+            added = max(wanted, have // GROWTH_DIVISOR, PAGES_GROWN_AT_LEAST)
+        else:
+            added = max(wanted, 1)
         shape = (have + added, 2, grid.REGION_CELLS)
         try:
             # In place where it can (realloc: a large block is remapped, not copied, so the
