@@ -143,3 +143,74 @@ def test_a_move_tests_its_blocks_as_it_draws_them_as_collides_would_after(tmp_pa
     names = {w.robots[1].model.index: 'robot', grid.STATIC: 'wall', grid.NO_HIT: 'free'}
     assert answers[0] == answers[1]
     assert names.get(answers[0]) == expected
+
+
+def cell_lists(space, layer):
+    """Every cell's list of moving blocks in `layer`, head to tail ({(page, cell): [block]}),
+    its backward links checked on the way: each entry's previous is the one before it, the
+    head's is the tail."""
+    lists = {}
+    for page in space.reg_dyn[space.reg_dyn >= 0].tolist():
+        for cell in range(grid.REGION_CELLS):
+            head = int(space.dyn_head[page, layer, cell])
+            if head < 0:
+                continue
+            order, e = [], head
+            while e >= 0:
+                if order:
+                    assert space.ent_prev[e] == order[-1]
+                order.append(e)
+                e = int(space.ent_next[e])
+            assert space.ent_prev[head] == order[-1]
+            lists[(page, cell)] = [int(space.ent_block[x]) for x in order]
+    return lists
+
+
+@pytest.mark.parametrize('redrawn', [0, 1, 2])     # the head, the middle, the tail
+def test_a_redrawn_block_leaves_its_cells_lists_and_joins_them_at_the_end(tmp_path, redrawn):
+    # three bodies on one spot share every cell, drawn in turn; one drawn again (erased,
+    # then drawn after the others) must leave the others' order as it was and come last
+    path = tmp_path / 'crowd.world'
+    path.write_text('resolution 0.02\n' + ''.join(
+        'position( name "r%d" pose [ 0 0 0 0 ] size [ 0.4 0.4 0.3 ] )\n' % k
+        for k in range(3)))
+    w = load_world(str(path))
+    space = w.space
+    blocks = [int(r.block_ids[0]) for r in w.robots]
+    layer = 0
+    before = cell_lists(space, layer)
+    assert before and all(order == blocks for order in before.values())
+    r = w.robots[redrawn]
+    space.draw(r.block_ids, w._body_rows(r), layer, w._seqs(r))
+    after = cell_lists(space, layer)
+    others = [b for b in blocks if b != blocks[redrawn]]
+    assert set(after) == set(before)
+    assert all(order == others + [blocks[redrawn]] for order in after.values())
+
+
+def test_a_crowd_erased_leaves_empty_lists_and_frees_its_pages(tmp_path):
+    # forty bodies on one spot: their cells' lists are forty long; erasing them all, one by
+    # one in an order that takes heads, tails and middles, must empty every list and give
+    # every page back
+    path = tmp_path / 'crowd.world'
+    path.write_text('resolution 0.02\n' + ''.join(
+        'position( name "r%d" pose [ 0 0 0 0 ] size [ 0.3 0.3 0.3 ] )\n' % k
+        for k in range(40)))
+    w = load_world(str(path))
+    space = w.space
+    assert max(len(order) for order in cell_lists(space, 0).values()) == 40
+    held = int((space.reg_dyn >= 0).sum())
+    free_before = int(space.free_state[0])
+    first = [20, 0, 39, 5, 38, 1]
+    for k in first + [k for k in range(40) if k not in first]:
+        b = int(w.robots[k].block_ids[0])
+        for layer in (0, 1):
+            grid.unmap_block(b, layer, space.rc_start, space.rc_len, space.rc_x, space.rc_y,
+                             space.rx0, space.ry0, space.nrx, space.nry, space.reg_count,
+                             space.reg_dyn, space.reg_dyncount, space.dyn_head,
+                             space.ent_next, space.ent_prev, space.free_state,
+                             space.page_free)
+            assert all(b not in order for order in cell_lists(space, layer).values())
+    assert cell_lists(space, 0) == {} and cell_lists(space, 1) == {}
+    assert held > 0 and int(space.free_state[0]) == free_before + held
+    assert (space.reg_dyn < 0).all() and (space.reg_dyncount == 0).all()

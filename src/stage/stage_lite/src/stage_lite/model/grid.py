@@ -13,7 +13,9 @@ table around the world carry their block count; the cells of regions with static
 there and, per moving body's height range, whether a static obstacle is there; moving
 bodies (robots and what they carry) are kept as Stage keeps them, as ordered lists per
 cell and layer. Which entry comes first in a cell is decided by when it was drawn (a
-sequence number), as in Stage's per-cell vectors.
+sequence number), as in Stage's per-cell vectors. The lists are linked both ways (a head's
+previous entry is its list's tail), so that an entry joins or leaves a list in one step
+however long the list: a crowd on one spot costs what a spread swarm does.
 """
 import math
 
@@ -111,27 +113,31 @@ def hold_page(reg, reg_dyn, dyn_head, free_state, page_free):
 
 @njit(cache=True)
 def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
-                reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, page_free):
-    """Block::UnMap: out of every cell it was drawn into (all its entries in each), one
-    count off the region per drawing; a region's page back to the pool when its last
-    entry goes."""
+                reg_dyn, reg_dyncount, dyn_head, ent_next, ent_prev, free_state, page_free):
+    """Block::UnMap: out of every cell it was drawn into (each of its entries unlinked from
+    its cell's list, the others kept in order), one count off the region per drawing; a
+    region's page back to the pool when its last entry goes."""
     s = rc_start[b]
     for k in range(rc_len[layer, b]):
-        reg = region_index(rc_x[layer, s + k], rc_y[layer, s + k], rx0, ry0, nrx, nry)
+        gx = rc_x[layer, s + k]
+        gy = rc_y[layer, s + k]
+        reg = region_index(gx, gy, rx0, ry0, nrx, nry)
         page = reg_dyn[reg]
-        cell = (rc_y[layer, s + k] & (REGION - 1)) * REGION + (rc_x[layer, s + k] & (REGION - 1))
-        prev = -1
-        e = dyn_head[page, layer, cell]
-        while e >= 0:
-            nxt = ent_next[e]
-            if ent_block[e] == b:
-                if prev < 0:
-                    dyn_head[page, layer, cell] = nxt
-                else:
-                    ent_next[prev] = nxt
+        cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
+        e = entry_of(layer, s + k, rc_x)
+        nxt = ent_next[e]
+        prv = ent_prev[e]
+        head = dyn_head[page, layer, cell]
+        if e == head:
+            dyn_head[page, layer, cell] = nxt
+            if nxt >= 0:
+                ent_prev[nxt] = prv          # the new head keeps the tail
+        else:
+            ent_next[prv] = nxt
+            if nxt >= 0:
+                ent_prev[nxt] = prv
             else:
-                prev = e
-            e = nxt
+                ent_prev[head] = prv         # e was the tail
         reg_count[reg] -= 1
         reg_dyncount[reg] -= 1
         if reg_dyncount[reg] == 0:
@@ -143,15 +149,15 @@ def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_
 
 @njit(cache=True)
 def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
-              reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, ent_seq,
-              free_state, page_free, test, reg_static, st_coll, blk_class, blk_model,
+              reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, ent_prev,
+              ent_seq, free_state, page_free, test, reg_static, st_coll, blk_class, blk_model,
               blk_zmin, blk_zmax, model_root, model_obstacle):
     """Block::Map: the block's outline cells at the given pixel vertices, each an entry at
     the end of its cell's list. The region table must hold them (World keeps it so). A
     drawing's k-th cell is entry k of its layer's row (entry_of): each block owns its
     entries, so that robots far apart can be drawn at once (motion.move_apart). With
     `test`, also the block's part of collides() on the way (its cells, static first, then
-    each list as the walk to its end reads it): its robot's own entries never count there,
+    each cell's list from its head): its robot's own entries never count there,
     and nothing else changes while its robot is drawn, so this is what collides() would say
     of the block once its robot is drawn. Returns that (NO_HIT without `test`)."""
     s = rc_start[b]
@@ -179,19 +185,24 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
         ent_block[e] = b
         ent_seq[e] = seq
         ent_next[e] = -1
-        tail = dyn_head[page, layer, cell]
-        if tail < 0:
+        head = dyn_head[page, layer, cell]
+        if head < 0:
             dyn_head[page, layer, cell] = e
+            ent_prev[e] = e
         else:
-            while True:
-                if testing and _blocks(m, b, ent_block[tail], blk_model, blk_zmin, blk_zmax,
-                                       model_root, model_obstacle):
-                    hit = blk_model[ent_block[tail]]
-                    testing = False
-                if ent_next[tail] < 0:
-                    break
-                tail = ent_next[tail]
+            if testing:
+                other = head
+                while other >= 0:
+                    if _blocks(m, b, ent_block[other], blk_model, blk_zmin, blk_zmax,
+                               model_root, model_obstacle):
+                        hit = blk_model[ent_block[other]]
+                        testing = False
+                        break
+                    other = ent_next[other]
+            tail = ent_prev[head]
             ent_next[tail] = e
+            ent_prev[e] = tail
+            ent_prev[head] = e
         reg_count[reg] += 1
         reg_dyncount[reg] += 1
     return hit
@@ -243,7 +254,7 @@ def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, re
 @njit(cache=True)
 def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x,
            rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block,
-           ent_next, ent_seq, free_state, page_free, test, reg_static, st_coll,
+           ent_next, ent_prev, ent_seq, free_state, page_free, test, reg_static, st_coll,
            blk_class, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """UnMap then Map of each block at its model's body pose (x, y, cos, sin): Stage's
     LocalToPixels, floor((x + px cos - py sin) * ppm), in Stage's order of operations. With
@@ -260,11 +271,12 @@ def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_l
             vx[j] = math.floor((gx + px * cosa - py * sina) * ppm)
             vy[j] = math.floor((gy + px * sina + py * cosa) * ppm)
         unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
-                    reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, free_state, page_free)
+                    reg_dyn, reg_dyncount, dyn_head, ent_next, ent_prev, free_state,
+                    page_free)
         testing = test and hit == NO_HIT     # (the first hit is the answer)
         found = map_block(b, layer, vx[:n], vy[:n], seqs[i], rc_start, rc_len, rc_x, rc_y,
                           rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head,
-                          ent_block, ent_next, ent_seq, free_state, page_free,
+                          ent_block, ent_next, ent_prev, ent_seq, free_state, page_free,
                           testing, reg_static, st_coll, blk_class, blk_model,
                           blk_zmin, blk_zmax, model_root, model_obstacle)
         if hit == NO_HIT:
@@ -275,21 +287,21 @@ def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_l
 @njit(cache=True)
 def move(blocks, new_poses, old_poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start,
          rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
-         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state, page_free,
-         blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
+         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_prev, ent_seq, free_state,
+         page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """ModelPosition::Move's grid work: the robot's blocks drawn in `layer` at their new
     poses and tested as they are drawn (redraw's test: collides()'s answer, without a
     second walk of the cells); on a collision drawn back at the old ones (seqs: two rows,
     the drawing numbers of each). Returns collides()'s answer."""
     hit = redraw(blocks, new_poses, seqs[0], layer, ppm, pts, pts_off, vx, vy, rc_start,
                  rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
-                 dyn_head, ent_block, ent_next, ent_seq, free_state, page_free, True,
-                 reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
+                 dyn_head, ent_block, ent_next, ent_prev, ent_seq, free_state, page_free,
+                 True, reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
                  model_obstacle)
     if hit != NO_HIT:
         redraw(blocks, old_poses, seqs[1], layer, ppm, pts, pts_off, vx, vy, rc_start,
                rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount,
-               dyn_head, ent_block, ent_next, ent_seq, free_state, page_free, False,
-               reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
+               dyn_head, ent_block, ent_next, ent_prev, ent_seq, free_state, page_free,
+               False, reg_static, st_coll, blk_class, blk_model, blk_zmin, blk_zmax, model_root,
                model_obstacle)
     return hit

@@ -269,7 +269,7 @@ def _move_one(i, base, check, subscribed, velocity, pose, stalled, twist, dt, la
               bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks, new_rows,
               old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy, rc_start,
               rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-              reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
+              reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_prev, ent_seq,
               free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """World._move of robot i, then its ground truth's twist; its drawings numbered from
     `base` (seq_bases). With `check`, first whether the move may need more free pages than
@@ -311,7 +311,7 @@ def _move_one(i, base, check, subscribed, velocity, pose, stalled, twist, dt, la
             hit = grid.move(blocks, new_rows[:nb], old_rows[:nb], seqs[:, :nb], layer, ppm,
                             pts, pts_off, vx, vy, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx,
                             nry, reg_count, reg_static, reg_dyn, reg_dyncount, st_coll,
-                            blk_class, dyn_head, ent_block, ent_next, ent_seq, free_state,
+                            blk_class, dyn_head, ent_block, ent_next, ent_prev, ent_seq, free_state,
                             page_free, blk_model, blk_zmin, blk_zmax, model_root,
                             model_obstacle)
             if hit != grid.NO_HIT:
@@ -330,7 +330,7 @@ def move_robots(order, first, check, bases, subscribed, velocity, pose, stalled,
                 layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks,
                 new_rows, old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
                 rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static,
-                reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next,
+                reg_dyn, reg_dyncount, st_coll, blk_class, dyn_head, ent_block, ent_next, ent_prev,
                 ent_seq, free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
                 model_obstacle):
     """World.step's moves of the robots order[first:], in turn (_move_one). Returns -1
@@ -345,7 +345,7 @@ def move_robots(order, first, check, bases, subscribed, velocity, pose, stalled,
                          r_blk_off, r_blocks, new_rows, old_rows, seqs, box, blk_radius,
                          blk_pages, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x, rc_y,
                          rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
-                         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_seq,
+                         st_coll, blk_class, dyn_head, ent_block, ent_next, ent_prev, ent_seq,
                          free_state, page_free, blk_model, blk_zmin, blk_zmax, model_root,
                          model_obstacle):
             return j
@@ -735,6 +735,6 @@ class Motion:
         sp = self.space
         return (sp.rc_start, sp.rc_len, sp.rc_x, sp.rc_y, sp.rx0, sp.ry0, sp.nrx, sp.nry,
                 sp.reg_count, sp.reg_static, sp.reg_dyn, sp.reg_dyncount, sp.st_coll,
-                sp.blk_class, sp.dyn_head, sp.ent_block, sp.ent_next, sp.ent_seq,
+                sp.blk_class, sp.dyn_head, sp.ent_block, sp.ent_next, sp.ent_prev, sp.ent_seq,
                 sp.free_state, sp.page_free, sp.blk_model, sp.blk_zmin, sp.blk_zmax,
                 sp.model_root, sp.model_obstacle)

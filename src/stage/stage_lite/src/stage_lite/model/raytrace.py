@@ -104,14 +104,15 @@ def trace(ox, oy, oz, angle_in, rng, ppm, ray_class, finder_root, layer,
                     if ax > ay:      # STAGE_WALK_RANGE
                         return abs((globx - startx) / cosa) / ppm, best
                     return abs((globy - starty) / sina) / ppm, best
-                if exy < 0:
-                    globx += sx
-                    exy += by
-                    cx += sx
-                else:
-                    globy += sy
-                    exy -= bx
-                    cy += sy
+                # one step along x or y, without a branch (the choice follows the
+                # angle's fraction and is mispredicted about half the time)
+                tx = np.int64(exy < 0)
+                ty = 1 - tx
+                globx += sx * tx
+                globy += sy * ty
+                exy += by * tx - bx * ty
+                cx += sx * tx
+                cy += sy * ty
                 n -= 1
         else:                    # STAGE_EMPTY_REGION_JUMP
             if crossings:

@@ -151,6 +151,8 @@ class Space:
         self.ent_block = np.zeros(entries, np.int64)
         self.ent_seq = np.zeros(entries, np.int64)
         self.ent_next = np.full(entries, -1, np.int64)
+        # per entry the one before it in its cell's list; a head's: the list's tail
+        self.ent_prev = np.full(entries, -1, np.int64)
         # the most regions each block's drawing can take, in both layers: the pages a
         # block's redraw may need at most; the pool grows as they are needed, never ahead of
         # them, so that a swarm costs the regions it covers (8 KB each), not its worst case
@@ -251,7 +253,7 @@ class Space:
                         self.blk_pts, self.blk_pts_off, self._vx, self._vy, self.rc_start,
                         self.rc_len, self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx,
                         self.nry, self.reg_count, self.reg_dyn, self.reg_dyncount,
-                        self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
+                        self.dyn_head, self.ent_block, self.ent_next, self.ent_prev, self.ent_seq,
                         self.free_state, self.page_free, False,
                         self.reg_static, self.st_coll, self.blk_class, self.blk_model,
                         self.blk_zmin, self.blk_zmax, self.model_root, self.model_obstacle)
@@ -268,7 +270,7 @@ class Space:
                          self.rc_x, self.rc_y, self.rx0, self.ry0, self.nrx, self.nry,
                          self.reg_count, self.reg_static, self.reg_dyn, self.reg_dyncount,
                          self.st_coll, self.blk_class, self.dyn_head, self.ent_block,
-                         self.ent_next, self.ent_seq, self.free_state,
+                         self.ent_next, self.ent_prev, self.ent_seq, self.free_state,
                          self.page_free, self.blk_model, self.blk_zmin, self.blk_zmax,
                          self.model_root, self.model_obstacle)
 
