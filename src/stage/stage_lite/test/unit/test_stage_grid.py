@@ -166,15 +166,20 @@ def cell_lists(space, layer):
     return lists
 
 
+def crowd(tmp_path, count, size):
+    """A world of `count` square bodies of side `size` on one spot, drawn in turn."""
+    path = tmp_path / 'crowd.world'
+    path.write_text('resolution 0.02\n' + ''.join(
+        'position( name "r%d" pose [ 0 0 0 0 ] size [ %g %g 0.3 ] )\n' % (k, size, size)
+        for k in range(count)))
+    return load_world(str(path))
+
+
 @pytest.mark.parametrize('redrawn', [0, 1, 2])     # the head, the middle, the tail
 def test_a_redrawn_block_leaves_its_cells_lists_and_joins_them_at_the_end(tmp_path, redrawn):
     # three bodies on one spot share every cell, drawn in turn; one drawn again (erased,
     # then drawn after the others) must leave the others' order as it was and come last
-    path = tmp_path / 'crowd.world'
-    path.write_text('resolution 0.02\n' + ''.join(
-        'position( name "r%d" pose [ 0 0 0 0 ] size [ 0.4 0.4 0.3 ] )\n' % k
-        for k in range(3)))
-    w = load_world(str(path))
+    w = crowd(tmp_path, 3, 0.4)
     space = w.space
     blocks = [int(r.block_ids[0]) for r in w.robots]
     layer = 0
@@ -192,11 +197,7 @@ def test_a_crowd_erased_leaves_empty_lists_and_frees_its_pages(tmp_path):
     # forty bodies on one spot: their cells' lists are forty long; erasing them all, one by
     # one in an order that takes heads, tails and middles, must empty every list and give
     # every page back
-    path = tmp_path / 'crowd.world'
-    path.write_text('resolution 0.02\n' + ''.join(
-        'position( name "r%d" pose [ 0 0 0 0 ] size [ 0.3 0.3 0.3 ] )\n' % k
-        for k in range(40)))
-    w = load_world(str(path))
+    w = crowd(tmp_path, 40, 0.3)
     space = w.space
     assert max(len(order) for order in cell_lists(space, 0).values()) == 40
     held = int((space.reg_dyn >= 0).sum())
