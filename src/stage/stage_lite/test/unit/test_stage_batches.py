@@ -1,11 +1,13 @@
 """The step's kernels and batches do what the world's one-by-one code does, to the last bit:
 every robot's update and move (motion.py) against World._step_each (power packs too), the
 fiducial finders' kernel against Fiducial.update_one_by_one, and the controllers' batches
-(expand_swarm, pioneer_flocking) against their callbacks called one by one."""
+(expand_swarm, pioneer_flocking, fasr2) against their callbacks called one by one."""
 import os
 
 import numpy as np
 import pytest
+from stage_lite.controllers import _fasr2_batch as fasr2_batch
+from stage_lite.controllers import fasr2
 from stage_lite.model import fiducial as fiducial_module
 from stage_lite.model import finders as finders_module
 from stage_lite.model import world as world_module
@@ -129,18 +131,54 @@ def swarm_world(tmp_path, n=20):
     return write(tmp_path, body)
 
 
-@pytest.mark.parametrize('make', [swarm_world, flocking_world])
-def test_the_batches_are_the_callbacks_one_by_one(tmp_path, make):
+def fasr2_world(_):
+    """fasr2's three robots on the workspace's small cave: one walks, one carries, one is
+    hungry (it docks, charges and undocks within the run)."""
+    return os.path.join(os.path.dirname(__file__), '..', 'worlds', 'fasr2_small.world')
+
+
+def controller_state(w):
+    """What fasr2's robots keep in Python (the batch reads and writes some of it)."""
+    robots = [cb.function.__self__ for (m, kind), entries in w.scheduler.callbacks.items()
+              for cb, _, _ in entries if isinstance(getattr(cb.function, '__self__', None),
+                                                     fasr2.Robot)]
+    return [(r.pos.token, r.mode, r.avoid_count, r.wait_started_at, r.goal.token,
+             None if r.plan is None else r.plan.id, r.force_recharge, r.charger_ahoy,
+             dict(r.subscribed), r.cached_goal_pose) for r in robots]
+
+
+@pytest.mark.parametrize('make, steps', [(swarm_world, STEPS), (flocking_world, STEPS),
+                                         (fasr2_world, 1500)])
+def test_the_batches_are_the_callbacks_one_by_one(tmp_path, make, steps):
     path = make(tmp_path)
     batched = load_world(path, seed=7, stageros=False)
     alone = load_world(path, seed=7, stageros=False)
     alone.batches = False
-    for step in range(STEPS):
+    for step in range(steps):
         batched.step()
         alone.step()
         assert_same(snapshot(batched), snapshot(alone), step)
+        assert controller_state(batched) == controller_state(alone), step
     assert batched._plans and not alone._plans            # the batch did run
     assert np.abs(batched.state.velocity).sum() > 0
+
+
+def test_fasr2s_kernel_does_most_updates_and_leaves_the_rest_to_python(monkeypatch):
+    # over the small cave's run each robot is, at times, the kernel's case and not (avoiding
+    # with a draw, hungry, docking): both paths must be taken, the kernel's most often
+    calls = {'kernel': 0, 'python': 0}
+    run = fasr2_batch.Fasr2Batch.run
+
+    def counted_run(self, plan, rows):
+        done = run(self, plan, rows)
+        calls['kernel'] += done
+        calls['python'] += int(done < rows.size)
+        return done
+    monkeypatch.setattr(fasr2_batch.Fasr2Batch, 'run', counted_run)
+    w = load_world(fasr2_world(None), seed=7, stageros=False)
+    for _ in range(1500):
+        w.step()
+    assert calls['kernel'] > 2 * calls['python'] > 0
 
 
 @pytest.mark.parametrize('robots', [12, 34])     # 34 * 34 pairs: the threads' kernel

@@ -43,25 +43,27 @@ class Task:
 
 class Plan:
     """A planned path: its nodes' centres (goal first, so a node's index is its value, the
-    steps from it to the goal)."""
+    steps from it to the goal); `id`: its number among its Shared's plans (-1 alone)."""
 
-    def __init__(self, xs, ys):
+    def __init__(self, xs, ys, plan_id=-1):
         self.xs = np.asarray(xs, np.float64)
         self.ys = np.asarray(ys, np.float64)
+        self.id = plan_id
 
     def good_direction(self, x, y, within=ADVICE_RANGE):
         """Graph::GoodDirection: the heading to the best node in range, plus the lane bias;
         None for no advice."""
-        best = _best_node(self.xs, self.ys, x, y, within)
+        best = best_node(self.xs, self.ys, 0, self.xs.shape[0], x, y, within)
         if best < 0:
             return None
         return normalize(math.atan2(self.ys[best] - y, self.xs[best] - x) + LANE_BIAS)
 
 
 @njit(cache=True)
-def _best_node(xs, ys, x, y, within):
-    # values rise with the index: the first node in range has the least
-    for i in range(xs.shape[0]):
+def best_node(xs, ys, start, end, x, y, within):
+    """The first node of xs[start:end] within range (values rise with the index: the first
+    has the least), its place in xs; -1 for none."""
+    for i in range(start, end):
         if math.hypot(xs[i] - x, ys[i] - y) < within:
             return i
     return -1
@@ -92,6 +94,11 @@ class Shared:
                                               size[1] / float(MAP_CELLS)))
         self.plans = {}
         self.misses = 0
+        # every plan's nodes one after the other (plan k's from _node_off[k]), for the
+        # batch's kernel; the arrays grow by doubling
+        self._node_xs = np.zeros(64)
+        self._node_ys = np.zeros(64)
+        self._node_off = np.zeros(65, np.int64)
 
     def cell(self, pose):
         return (meters_to_cell(pose.x, self.size[0], MAP_CELLS),
@@ -106,5 +113,25 @@ class Shared:
             path = astar(self.costs, MAP_CELLS, MAP_CELLS, start, goal)[::-1]
             plan = self.plans[key] = Plan(
                 [cell_to_meters(c[0], self.size[0], MAP_CELLS) for c in path],
-                [cell_to_meters(c[1], self.size[1], MAP_CELLS) for c in path])
+                [cell_to_meters(c[1], self.size[1], MAP_CELLS) for c in path],
+                len(self.plans))
+            self._keep_nodes(plan)
         return plan
+
+    def _keep_nodes(self, plan):
+        k = plan.id
+        start = int(self._node_off[k])
+        end = start + plan.xs.shape[0]
+        if end > self._node_xs.shape[0]:
+            size = max(end, 2 * self._node_xs.shape[0])
+            self._node_xs = np.resize(self._node_xs, size)
+            self._node_ys = np.resize(self._node_ys, size)
+        if k + 2 > self._node_off.shape[0]:
+            self._node_off = np.resize(self._node_off, 2 * self._node_off.shape[0])
+        self._node_xs[start:end] = plan.xs
+        self._node_ys[start:end] = plan.ys
+        self._node_off[k + 1] = end
+
+    def plan_nodes(self):
+        """(xs, ys, off): every plan's nodes, plan k's at [off[k]:off[k + 1]]."""
+        return self._node_xs, self._node_ys, self._node_off

@@ -37,15 +37,21 @@ Rule for rule as Stage's:
 - hungry below 20 % (or after leaving a source), full above 95 %.
 Stage's statics (tasks, grid, plans) are the process's; here they are the world's. Where
 Stage loops forever (hungry with a plan that never gives advice) this raises instead.
+Distances are the C library's hypot, as Stage's. The commonest update (working, away from
+the goal, not hungry, avoiding without a draw or following the plan) runs for many robots
+in one kernel (_fasr2_batch.py), the same to the bit.
 """
 import math
 import weakref
+
+from numpy import hypot as c_hypot  # math.hypot differs from it in the last bit at times
 
 from stage_lite.model.stage_api import Pose, normalize
 
 from ._avoid import avoid_step
 from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
-from ._fasr2_plans import Shared
+from ._fasr2_batch import Fasr2Batch
+from ._fasr2_plans import ADVICE_RANGE, LANE_BIAS, Shared
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -107,7 +113,8 @@ class Robot:
             raise LookupError('%s\'s sonar has %d sensors: fasr2 reads sensors %d to %d'
                               % (pos.token, len(self.sonar.sensors), BACK_SONARS[0],
                                  BACK_SONARS[-1]))
-        if pos.find_power_pack() is None:
+        self.pack = pos.find_power_pack()
+        if self.pack is None:
             raise LookupError('%s has no power pack (fasr2 reads its charge)' % pos.token)
         self.wait_started_at = -1
         self.task = pos.world.random() % len(shared.tasks)
@@ -134,11 +141,10 @@ class Robot:
 
     # ---- the power pack ------------------------------------------------------------------
     def hungry(self):
-        return self.force_recharge or \
-            self.pos.find_power_pack().proportion_remaining() < HUNGRY
+        return self.force_recharge or self.pack.proportion_remaining() < HUNGRY
 
     def full(self):
-        return self.pos.find_power_pack().proportion_remaining() > FULL
+        return self.pack.proportion_remaining() > FULL
 
     # ---- plans and goals -----------------------------------------------------------------
     def replan(self, goal_pose):
@@ -186,7 +192,7 @@ class Robot:
         update)."""
         source = self.goal
         there = source.get_pose()
-        near = math.hypot(there.x - pose.x, there.y - pose.y) < source.get_geom()[1][0] / 2.0
+        near = c_hypot(there.x - pose.x, there.y - pose.y) < source.get_geom()[1][0] / 2.0
         if near and self.wait_started_at < 0 and pos.get_flag_count() == 0:
             self.wait_started_at = int(pos.world.sim_time_now() / 1e6)
         if self.wait_started_at > 0 and pos.world.drand48() < LEAVE_CHANCE:
@@ -205,7 +211,7 @@ class Robot:
     def at_sink(self, pos, pose):
         sink = self.goal
         there = sink.get_pose()
-        if math.hypot(there.x - pose.x, there.y - pose.y) < sink.get_geom()[1][0] / 2.0 \
+        if c_hypot(there.x - pose.x, there.y - pose.y) < sink.get_geom()[1][0] / 2.0 \
                 and pos.get_flag_count() > 0:
             flag = pos.pop_flag()
             flag.color = DELIVERED_COLOR
@@ -232,8 +238,8 @@ class Robot:
         if advice is not None:
             a_goal = advice
         goal_pose = self.goal.get_pose()
-        moved = math.hypot(goal_pose.x - self.cached_goal_pose.x,
-                           goal_pose.y - self.cached_goal_pose.y)
+        moved = c_hypot(goal_pose.x - self.cached_goal_pose.x,
+                        goal_pose.y - self.cached_goal_pose.y)
         if advice is None or moved > REPLAN_MOVE:
             self.replan(goal_pose)
             self.cached_goal_pose = goal_pose
@@ -293,3 +299,10 @@ class Robot:
                     self.set_goal(tasks[self.task].sink)
                 self.enable('fiducial', False)
                 self.enable('sonar', False)
+
+
+# the working robots' updates in one kernel (_fasr2_batch.py), the rest as above
+Robot.update.batch = Fasr2Batch(dict(
+    work=MODE_WORK, hungry=HUNGRY, front=MIN_FRONT_DISTANCE, stop=STOP_DISTANCE,
+    avoid_speed=AVOID_SPEED, cruise=CRUISE_SPEED, replan_move=REPLAN_MOVE,
+    advice_range=ADVICE_RANGE, lane_bias=LANE_BIAS))

@@ -32,6 +32,10 @@ class Position(Model):
         else:
             self._pose_row.set(value)
 
+    def pose_rows(self):
+        """(rows, slot): the array row the pose lives in (the world's, once bound)."""
+        return self._pose_row.rows, self._pose_row.slot
+
     def bind_pose(self, rows, slot):
         """The pose from now on is rows[slot] (the world's RobotArrays.pose)."""
         self._pose_row.bind(rows, slot)

@@ -346,6 +346,11 @@ class PositionApi(ModelApi):
         commands many robots in one kernel as set_speed would."""
         return self._robot.command_rows()
 
+    def pose_rows(self):
+        """(pose, row): the world's array this model's pose lives in (pose[row] = (x, y, z,
+        a), in its parent's frame, as get_pose gives it), for a controller's batch."""
+        return self._model.pose_rows()
+
 
 def world_api(world):
     if world._world_api is None:

@@ -11,7 +11,7 @@ expand_swarm and pioneer_flocking on two others (their batches' kernels) calls e
 with the argument types stageros uses (test_stage_warmup.py checks that none is left out);
 a second world, whose robot stands on another model, the kernels a World moving its robots
 one by one calls; a third, two robots far apart, the kernels that move robots two at a
-time; fasr2's planner is called on its own.
+time; fasr2's planner and its batch's kernel are called on their own.
 """
 import glob
 import hashlib
@@ -116,11 +116,21 @@ def warm_race():
 
 
 def warm_planner():
-    """fasr2's A* search and its plans' advice, with the types fasr2 calls them with."""
+    """fasr2's A* search, its plans' advice and its batch's kernel, with the types fasr2
+    calls them with (one robot following a plan of one node)."""
+    import numpy as np
+
     from stage_lite.controllers._astar import astar
+    from stage_lite.controllers._fasr2_batch import _work_all
     from stage_lite.controllers._fasr2_plans import Plan
     astar([1, 1, 9, 1], 2, 2, (0, 0), (1, 1))
     Plan([0.5], [0.5]).good_direction(0.0, 0.0)
+    one, no = np.ones(1, np.bool_), np.zeros(1, np.bool_)
+    ints, floats = np.zeros(1, np.int64), np.zeros(1)
+    _work_all(ints, one, ints, ints, ints, ints.copy(), no, ints, np.zeros((1, 2)),
+              np.ones((1, 2)), np.ones(1), floats, floats, np.array([0, 1]), np.ones(4),
+              ints, np.array([4]), np.zeros((1, 4)), ints, np.zeros((1, 4)), ints.copy(),
+              0.7, 0.5, 0.05, 0.4, 0.5, 5.0, 0.25)
 
 
 def warm_chargers(world):
