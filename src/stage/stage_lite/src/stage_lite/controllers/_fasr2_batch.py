@@ -1,12 +1,12 @@
 """fasr2's position updates, robot after robot, in one kernel (scheduler.py's batch protocol).
 
 Most of fasr2's updates are one case: a working robot away from its goal, not waiting, not
-hungry, with a plan that advises; it either keeps avoiding (its count left, no draw) or
-turns to the plan's heading and cruises. The kernel does exactly that case, rule for rule
-as fasr2.py (the same comparisons, the C library's hypot, atan2 and Stage's normalize), and
-stops at the first robot in any other case (at its goal, waiting, hungry, docking or
-undocking, a new avoid that draws, no plan or advice, its goal moved): that robot's update
-runs in Python, and the kernel goes on after it.
+hungry, with a plan that advises; it either avoids (a new avoid drawing its count from
+random()'s stream, glibc_random.random_next) or turns to the plan's heading and cruises. The
+kernel does exactly that case, rule for rule as fasr2.py (the same comparisons, the C
+library's hypot, atan2 and Stage's normalize), and stops at the first robot in any other
+case (at its goal, waiting, hungry, docking or undocking, no plan or advice, its goal
+moved): that robot's update runs in Python, and the kernel goes on after it.
 
 What the kernel reads of each robot's Python state (mode, avoid count, task, goal, plan,
 pack) is gathered once a step: during the update callbacks a robot's update changes only its
@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from stage_lite.model.glibc_random import random_next
 from stage_lite.model.jit import njit
 from stage_lite.model.motion import normalize
 from stage_lite.model.robot_state import MODE_CODE
@@ -65,6 +66,7 @@ class Fasr2Batch:
         goals = [m for t in shared.tasks for m in (t.source, t.sink)] + [robots[0].fuel_zone]
         plan['goals'] = goals
         plan['goal_slot'] = {id(m): k for k, m in enumerate(goals)}
+        plan['random'] = robots[0].pos.world.random_stream()
         return plan
 
     def run(self, plan, rows):
@@ -76,13 +78,15 @@ class Fasr2Batch:
         state = plan['state']
         rules = self.rules
         xs, ys, off = plan['shared'].plan_nodes()
+        stream = plan['random']
         done = _work_all(rows, state['simple'], state['kind'], state['goal'], state['wait'],
                          state['avoid'], state['hungry'], state['plan'], state['cached'],
                          plan['goal_xy'], plan['goal_half'], xs, ys, off, plan['beams'],
                          plan['first'], plan['samples'], plan['pose'], plan['row'],
-                         plan['goal'], plan['mode'], rules['front'], rules['stop'],
-                         rules['avoid_speed'], rules['cruise'], rules['replan_move'],
-                         rules['advice_range'], rules['lane_bias'])
+                         plan['goal'], plan['mode'], stream.table, stream.pointers,
+                         rules['front'], rules['stop'], rules['avoid_speed'],
+                         rules['avoid_turn'], rules['avoid_duration'], rules['cruise'],
+                         rules['replan_move'], rules['advice_range'], rules['lane_bias'])
         did = rows[:done]
         avoid = state['avoid']
         for i in did[avoid[did] != state['avoid_before'][did]].tolist():
@@ -128,8 +132,9 @@ class Fasr2Batch:
 
 @njit(cache=True)
 def _work_all(rows, simple, kind, goal, wait, avoid, hungry, plan, cached, goal_xy, goal_half,
-              xs, ys, off, beams, first, samples, pose, row, command, mode, front, stop,
-              avoid_speed, cruise, replan_move, advice_range, lane_bias):
+              xs, ys, off, beams, first, samples, pose, row, command, mode, table, pointers,
+              front, stop, avoid_speed, avoid_turn, avoid_duration, cruise, replan_move,
+              advice_range, lane_bias):
     """fasr2's update of the robots `rows` in turn while each is the simple case; returns
     how many were done (the next is called on its own)."""
     for j in range(rows.shape[0]):
@@ -147,12 +152,14 @@ def _work_all(rows, simple, kind, goal, wait, avoid, hungry, plan, cached, goal_
             if kind[i] == SOURCE_GOAL and wait[i] > 0:     # waiting: a draw
                 return j
         scan = beams[first[i]:first[i] + samples[i]]
-        obstruction, too_close, _, _ = _beam_rule(scan, AVOID_PART, front, stop)
+        obstruction, too_close, min_left, min_right = _beam_rule(scan, AVOID_PART, front,
+                                                                 stop)
         if obstruction or too_close or avoid[i] > 0:  # avoid_step
-            if avoid[i] < 1:                          # a new avoid draws its count
-                return j
             command[p, 0] = 0.0 if too_close else avoid_speed
             mode[p] = VELOCITY
+            if avoid[i] < 1:                          # a new avoid: its count drawn
+                avoid[i] = random_next(table, pointers) % avoid_duration + avoid_duration
+                command[p, 3] = -avoid_turn if min_left < min_right else avoid_turn
             avoid[i] -= 1
             continue
         if hungry[i] or plan[i] < 0:

@@ -38,8 +38,8 @@ Rule for rule as Stage's:
 Stage's statics (tasks, grid, plans) are the process's; here they are the world's. Where
 Stage loops forever (hungry with a plan that never gives advice) this raises instead.
 Distances are the C library's hypot, as Stage's. The commonest update (working, away from
-the goal, not hungry, avoiding without a draw or following the plan) runs for many robots
-in one kernel (_fasr2_batch.py), the same to the bit.
+the goal, not hungry, avoiding or following the plan) runs for many robots in one kernel
+(_fasr2_batch.py), the same to the bit.
 """
 import math
 import weakref
@@ -304,5 +304,6 @@ class Robot:
 # the working robots' updates in one kernel (_fasr2_batch.py), the rest as above
 Robot.update.batch = Fasr2Batch(dict(
     work=MODE_WORK, hungry=HUNGRY, front=MIN_FRONT_DISTANCE, stop=STOP_DISTANCE,
-    avoid_speed=AVOID_SPEED, cruise=CRUISE_SPEED, replan_move=REPLAN_MOVE,
+    avoid_speed=AVOID_SPEED, avoid_turn=AVOID_TURN, avoid_duration=AVOID_DURATION,
+    cruise=CRUISE_SPEED, replan_move=REPLAN_MOVE,
     advice_range=ADVICE_RANGE, lane_bias=LANE_BIAS))

@@ -103,17 +103,21 @@ def drand48_next(state):
 
 
 @njit(cache=True)
-def _fill(table, pointers, out):
+def random_next(table, pointers):
+    """Random.random in a kernel, on its state arrays (table, pointers)."""
     f = pointers[0]
     r = pointers[1]
+    value = (table[f] + table[r]) & 0xFFFFFFFF
+    table[f] = value
+    pointers[0] = (f + 1) % 31
+    pointers[1] = (r + 1) % 31
+    return value >> 1
+
+
+@njit(cache=True)
+def _fill(table, pointers, out):
     for k in range(out.shape[0]):
-        value = (table[f] + table[r]) & 0xFFFFFFFF
-        table[f] = value
-        out[k] = value >> 1
-        f = (f + 1) % 31
-        r = (r + 1) % 31
-    pointers[0] = f
-    pointers[1] = r
+        out[k] = random_next(table, pointers)
 
 
 def _signed32(value):

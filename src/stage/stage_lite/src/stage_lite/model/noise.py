@@ -17,26 +17,15 @@ import math
 
 import numpy as np
 
-from .glibc_random import RAND_MAX
+from .glibc_random import RAND_MAX, random_next
 from .jit import njit
 
 TWO_PI = math.pi + math.pi
 
 
 @njit(cache=True)
-def _random(table, pointers):
-    f = pointers[0]
-    r = pointers[1]
-    value = (table[f] + table[r]) & 0xFFFFFFFF
-    table[f] = value
-    pointers[0] = (f + 1) % 31
-    pointers[1] = (r + 1) % 31
-    return value >> 1
-
-
-@njit(cache=True)
 def _simple_noise(table, pointers):
-    return 2.0 * ((_random(table, pointers) % 1000) * 0.001 - 0.5)
+    return 2.0 * ((random_next(table, pointers) % 1000) * 0.001 - 0.5)
 
 
 # spare[0]: no spare (0), a spare ready (COOKED: spare[1] = -2 log(rand1), spare[2] the
@@ -61,7 +50,7 @@ def _cook(spare):
 
 @njit(cache=True)
 def _next(table, f, r):
-    """_random with the stream's pointers as values: (value, front, rear) after the draw."""
+    """random_next with the stream's pointers as values: (value, front, rear) after the draw."""
     value = (table[f] + table[r]) & 0xFFFFFFFF
     table[f] = value
     return value >> 1, (f + 1) % 31, (r + 1) % 31

@@ -99,6 +99,11 @@ class WorldApi:
 
     rand = random
 
+    def random_stream(self):
+        """random()'s stream itself (glibc_random.Random: its state arrays `table` and
+        `pointers`), for a controller's batch that draws in a kernel (random_next)."""
+        return self._world.random
+
     def random_block(self, count):
         """The next `count` values of random(), in order (an int64 array)."""
         return self._world.random.block(count)

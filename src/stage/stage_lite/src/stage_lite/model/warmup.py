@@ -130,7 +130,8 @@ def warm_planner():
     _work_all(ints, one, ints, ints, ints, ints.copy(), no, ints, np.zeros((1, 2)),
               np.ones((1, 2)), np.ones(1), floats, floats, np.array([0, 1]), np.ones(4),
               ints, np.array([4]), np.zeros((1, 4)), ints, np.zeros((1, 4)), ints.copy(),
-              0.7, 0.5, 0.05, 0.4, 0.5, 5.0, 0.25)
+              np.arange(31, dtype=np.int64), np.array([3, 0]), 0.7, 0.5, 0.05, 0.5, 10, 0.4,
+              0.5, 5.0, 0.25)
 
 
 def warm_chargers(world):
