@@ -70,6 +70,18 @@ def mirror(src, dst):
             os.symlink(path, os.path.join(dst, name))
 
 
+def own_copy(path, dest):
+    """A copy of the world file at path as dest, a file of its own: where the mirror has a
+    link of that name (one of Stage's worlds), the link goes first, so that the copy never
+    writes through it into the worlds folder."""
+    with open(path, 'rb') as src:
+        text = src.read()
+    if os.path.lexists(dest):
+        os.unlink(dest)
+    with open(dest, 'wb') as f:
+        f.write(text)
+
+
 def timed_copy(root, world, quit_time_s):
     """A copy of root/world beside it (a new file), running from the start and quitting at
     quit_time_s; its path."""
@@ -158,8 +170,7 @@ def main(argv=None):
         own = []
         for path in args.world:          # beside Stage's worlds, under the bench's folder
             name = os.path.splitext(os.path.basename(path))[0]
-            with open(path, 'rb') as src, open(os.path.join(tmp, name + '.world'), 'wb') as f:
-                f.write(src.read())
+            own_copy(path, os.path.join(tmp, name + '.world'))
             own.append((name, name + '.world', *args.span))
         chosen = [w for w in WORLDS if (args.only or not own) and (not args.only
                                                                   or w[0] in args.only)]
