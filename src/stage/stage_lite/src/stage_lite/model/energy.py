@@ -96,11 +96,15 @@ class PowerPack:
         dest.add(amount)
 
     def dissipate(self, joules):
-        """Loses energy as work or heat: all of it from an infinite supply, else no more than
-        is stored."""
-        amount = joules if self.stored < 0 else min(self.stored, joules)
-        self.subtract(amount)
-        self.dissipated += amount
+        """Loses energy as work or heat: all of it from an infinite supply (subtract's rule,
+        written out: it runs for every active model at every step), else no more than is
+        stored."""
+        if self.stored < 0:
+            self.supplied += joules
+        else:
+            joules = min(self.stored, joules)
+            self.stored -= joules
+        self.dissipated += joules
 
 
 def load_energy(model, wf, entity):
@@ -159,7 +163,7 @@ class Energy:
         self.world = world
         self.rank = rank
         self.active = set()           # Stage's World::active_energy
-        self._order = []
+        self._order = []              # (model, its pack) of the set, in Stage's order
         self._charging = {}           # charger -> the packs it charged at its last update
         self._static_cells = {}       # a static charger or taker -> its cells
         self._static_takers = None
@@ -182,12 +186,17 @@ class Energy:
             model.watts = 0.0
         if model in self.active:
             self.active.discard(model)
-            self._order = sorted(self.active, key=self.rank)
+            self._sort()
 
     def _enable(self, model):
         if model not in self.active:
             self.active.add(model)
-            self._order = sorted(self.active, key=self.rank)
+            self._sort()
+
+    def _sort(self):
+        """The set in Stage's order, each model with its pack (packs are made with their
+        models, at load: found once)."""
+        self._order = [(m, find_power_pack(m)) for m in sorted(self.active, key=self.rank)]
 
     def position_updated(self, model, velocity):
         """ModelPosition::Update's power draw, from the velocity before its bounds."""
@@ -196,25 +205,25 @@ class Energy:
     # ---- World::Update's last part ---------------------------------------------------------
     def update(self):
         """Model::UpdateCharge of every model of the set, in Stage's order."""
-        for m in self._order:
-            self.update_charge(m)
+        for model, pack in self._order:
+            if model.watts > 0:
+                pack.dissipate(model.watts * (ENERGY_INTERVAL_US * 1e-6))
+            if model.watts_give > 0:
+                self._give(model, pack)
 
-    def update_charge(self, model):
-        pack = find_power_pack(model)
-        if model.watts > 0:
-            pack.dissipate(model.watts * (ENERGY_INTERVAL_US * 1e-6))
-        if model.watts_give > 0:
-            for p in self._charging.pop(model, ()):
-                p.charging = False
-            charged = []
-            for toucher in self.touching(model):
-                his = find_power_pack(toucher)
-                if his is not None and toucher.watts_take > 0.0:
-                    rate = min(model.watts_give, toucher.watts_take)
-                    his.charging = True
-                    pack.transfer_to(his, rate * ENERGY_INTERVAL_US * 1e-6)
-                    charged.append(his)
-            self._charging[model] = charged
+    def _give(self, model, pack):
+        """A charger's part of UpdateCharge: to every model touching it that takes."""
+        for p in self._charging.pop(model, ()):
+            p.charging = False
+        charged = []
+        for toucher in self.touching(model):
+            his = find_power_pack(toucher)
+            if his is not None and toucher.watts_take > 0.0:
+                rate = min(model.watts_give, toucher.watts_take)
+                his.charging = True
+                pack.transfer_to(his, rate * ENERGY_INTERVAL_US * 1e-6)
+                charged.append(his)
+        self._charging[model] = charged
 
     # ---- Block::AppendTouchingModels -------------------------------------------------------
     def touching(self, model):
