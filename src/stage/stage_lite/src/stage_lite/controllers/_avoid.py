@@ -8,6 +8,8 @@ import numpy as np
 
 from stage_lite.model.jit import njit
 
+AVOID_PART = 4        # fasr's and fasr2's avoid step reads the scan's middle half
+
 
 def beam_rule(scan, part, front, stop):
     """(obstruction ahead, something too close, nearest on the left, nearest on the
@@ -22,7 +24,7 @@ def avoid_step(pos, scan, count, front, stop, speed, turn, duration):
     count: (True while avoiding, the count after this call). Something ahead, too close or
     a count left: creep at `speed` (stand if too close); a new avoid turns `turn` rad/s away
     from the nearer side for random() % duration + duration calls (the world's stream)."""
-    obstruction, too_close, min_left, min_right = beam_rule(scan, 4, front, stop)
+    obstruction, too_close, min_left, min_right = beam_rule(scan, AVOID_PART, front, stop)
     if not (obstruction or too_close or count > 0):
         return False, count
     pos.set_x_speed(0.0 if too_close else speed)

@@ -21,12 +21,11 @@ from stage_lite.model.jit import njit
 from stage_lite.model.motion import normalize
 from stage_lite.model.robot_state import MODE_CODE
 
-from ._avoid import _beam_rule
-from ._fasr2_plans import best_node
+from ._avoid import AVOID_PART, _beam_rule
+from ._fasr2_plans import best_node, reach
 
 VELOCITY = MODE_CODE['velocity']
 OTHER_GOAL, SOURCE_GOAL, SINK_GOAL = 0, 1, 2
-AVOID_PART = 4              # avoid_step's middle half of the scan
 # a robot the kernel leaves to its own update (the other fields unread)
 NOT_SIMPLE = (False, OTHER_GOAL, 0, 0, 0, False, -1, 0.0, 0.0, False)
 
@@ -98,7 +97,6 @@ class Fasr2Batch:
     def _gather(self, plan):
         """This step's state of every robot, as the kernel reads it."""
         work = self.rules['work']
-        hungry_below = self.rules['hungry']
         slot = plan['goal_slot']
         tasks = plan['shared'].tasks
         rows = []
@@ -110,9 +108,8 @@ class Fasr2Batch:
             task = tasks[r.task]
             kind = SOURCE_GOAL if r.goal is task.source else \
                 SINK_GOAL if r.goal is task.sink else OTHER_GOAL
-            hungry = r.force_recharge or r.pack.proportion_remaining() < hungry_below
             cached = r.cached_goal_pose
-            rows.append((True, kind, k, r.wait_started_at, r.avoid_count, hungry,
+            rows.append((True, kind, k, r.wait_started_at, r.avoid_count, r.hungry(),
                          -1 if r.plan is None else r.plan.id, cached.x, cached.y,
                          r.charger_ahoy))
         (simple, kind, goal, wait, avoid, hungry, plan_id, cached_x, cached_y,
@@ -127,7 +124,7 @@ class Fasr2Batch:
         goals = plan['goals']
         poses = [m.get_pose() for m in goals]
         plan['goal_xy'] = np.array([(p.x, p.y) for p in poses], np.float64)
-        plan['goal_half'] = np.array([m.get_geom()[1][0] / 2.0 for m in goals], np.float64)
+        plan['goal_half'] = np.array([reach(m) for m in goals], np.float64)
 
 
 @njit(cache=True)

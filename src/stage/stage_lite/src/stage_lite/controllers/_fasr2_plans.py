@@ -41,6 +41,11 @@ class Task:
         self.participants = 0
 
 
+def reach(model):
+    """How near a source or sink a robot must be to be at it (fasr2: half its width)."""
+    return model.get_geom()[1][0] / 2.0
+
+
 class Plan:
     """A planned path: its nodes' centres (goal first, so a node's index is its value, the
     steps from it to the goal); `id`: its number among its Shared's plans (-1 alone)."""

@@ -26,7 +26,7 @@ import math
 
 from stage_lite.model.stage_api import normalize
 
-from ._avoid import avoid_step, beam_rule
+from ._avoid import AVOID_PART, avoid_step, beam_rule
 from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
 
 CRUISE_SPEED = 0.4        # m/s
@@ -86,7 +86,7 @@ def heading_goal(x, y, carrying, hungry):
 def scan_rule(scan):
     """(obstruction, stop, nearest on the left, nearest on the right) of a laser scan, by
     fasr's beam rule: the middle half is n/4 < i < n - n/4, the left half i > n/2."""
-    return beam_rule(scan, 4, MIN_FRONT_DISTANCE, STOP_DISTANCE)
+    return beam_rule(scan, AVOID_PART, MIN_FRONT_DISTANCE, STOP_DISTANCE)
 
 
 class Forager:

@@ -51,7 +51,7 @@ from stage_lite.model.stage_api import Pose, normalize
 from ._avoid import avoid_step
 from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
 from ._fasr2_batch import Fasr2Batch
-from ._fasr2_plans import ADVICE_RANGE, LANE_BIAS, Shared
+from ._fasr2_plans import ADVICE_RANGE, LANE_BIAS, Shared, reach
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -192,7 +192,7 @@ class Robot:
         update)."""
         source = self.goal
         there = source.get_pose()
-        near = c_hypot(there.x - pose.x, there.y - pose.y) < source.get_geom()[1][0] / 2.0
+        near = c_hypot(there.x - pose.x, there.y - pose.y) < reach(source)
         if near and self.wait_started_at < 0 and pos.get_flag_count() == 0:
             self.wait_started_at = int(pos.world.sim_time_now() / 1e6)
         if self.wait_started_at > 0 and pos.world.drand48() < LEAVE_CHANCE:
@@ -211,7 +211,7 @@ class Robot:
     def at_sink(self, pos, pose):
         sink = self.goal
         there = sink.get_pose()
-        if c_hypot(there.x - pose.x, there.y - pose.y) < sink.get_geom()[1][0] / 2.0 \
+        if c_hypot(there.x - pose.x, there.y - pose.y) < reach(sink) \
                 and pos.get_flag_count() > 0:
             flag = pos.pop_flag()
             flag.color = DELIVERED_COLOR
@@ -303,7 +303,7 @@ class Robot:
 
 # the working robots' updates in one kernel (_fasr2_batch.py), the rest as above
 Robot.update.batch = Fasr2Batch(dict(
-    work=MODE_WORK, hungry=HUNGRY, front=MIN_FRONT_DISTANCE, stop=STOP_DISTANCE,
+    work=MODE_WORK, front=MIN_FRONT_DISTANCE, stop=STOP_DISTANCE,
     avoid_speed=AVOID_SPEED, avoid_turn=AVOID_TURN, avoid_duration=AVOID_DURATION,
     cruise=CRUISE_SPEED, replan_move=REPLAN_MOVE,
     advice_range=ADVICE_RANGE, lane_bias=LANE_BIAS))

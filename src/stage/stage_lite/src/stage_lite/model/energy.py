@@ -96,15 +96,11 @@ class PowerPack:
         dest.add(amount)
 
     def dissipate(self, joules):
-        """Loses energy as work or heat: all of it from an infinite supply (subtract's rule,
-        written out: it runs for every active model at every step), else no more than is
-        stored."""
-        if self.stored < 0:
-            self.supplied += joules
-        else:
-            joules = min(self.stored, joules)
-            self.stored -= joules
-        self.dissipated += joules
+        """Loses energy as work or heat: all of it from an infinite supply, else no more than
+        is stored."""
+        amount = joules if self.stored < 0 else min(self.stored, joules)
+        self.subtract(amount)
+        self.dissipated += amount
 
 
 def load_energy(model, wf, entity):
