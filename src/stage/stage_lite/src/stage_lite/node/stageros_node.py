@@ -194,10 +194,14 @@ class WorldLoader(threading.Thread):
         self.error = None
 
     def run(self):
-        from ..model.world import (  # numpy and the model after the command line
-            WorldError,
-            load_world,
-        )
+        try:
+            # numpy and the model after the command line; inside the try: when a bad
+            # parameter ends the process first, this import meets the interpreter's shutdown
+            # (concurrent.futures' atexit refused), and that is no traceback either
+            from ..model.world import WorldError, load_world
+        except Exception as err:
+            self.error = '%s: could not load the world: %s' % (self.path, err)
+            return
         try:
             self.world = load_world(self.path)
         except WorldError as err:
