@@ -96,13 +96,12 @@ class StageViewsTest(ScratchDirTestCase):
         last = {'missing': None}
 
         def shown():
-            if not rviz.running():
-                raise AssertionError('rviz exited:\n%s' % rviz.log()[-2000:])
             shot = rviz.grab()
             last['missing'] = missing_from_view(shot)
             return [shot] if not last['missing'] else None
         try:
-            return wait_for(shown, RVIZ_DEADLINE_S, what, poll_s=0.5)[0]
+            return wait_for(lambda: rviz.alive_and(shown), RVIZ_DEADLINE_S, what,
+                            poll_s=0.5)[0]
         except AssertionError as err:
             Image.fromarray(rviz.grab()).save(os.path.join(results_dir(), 'stage_rviz_failed.png'))
             raise AssertionError('%s; not shown: %s' % (err, last['missing'])) from None

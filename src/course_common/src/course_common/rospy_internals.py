@@ -10,9 +10,11 @@ a real subscriber) pin every attribute used here against the installed rospy: if
 update renames or changes one, those tests fail naming it, instead of the simulator becoming
 slow or silent.
 """
+import atexit
 import contextlib
 import functools
 import itertools
+import signal
 import threading
 import time
 import traceback
@@ -32,6 +34,8 @@ from course_common.tcpros_frames import FrameStream, split_frames
 ROSOUT_TOPICS_PARAM = '/rosout_disable_topics_generation'
 #: The attribute of a connection (rospy's transport) holding write_frame's FrameStream.
 STREAM_ATTR = 'course_frame_stream'
+#: How long the interpreter's exit waits for a signal's shutdown (shut_down_off_the_signal), s
+SIGNAL_SHUTDOWN_WAIT_S = 10.0
 #: throttled_topic_checks(): at most one check of every topic's connections this often, s
 #: (rospy's own period when no registration comes in: RegManager.run's cond.wait(0.5))
 TOPIC_CHECK_PERIOD_S = 0.5
@@ -347,9 +351,68 @@ def shutdown_requested():
     Replaces ``rospy.is_shutdown()`` where a publisher must know that its topic may be closed:
     is_shutdown() turns true only after rospy's pre-shutdown hooks, one of which closes every
     topic, so a publish in that window raises "publish() to a closed topic". Nothing to
-    measure: rospy has no public call for that window.
+    measure: rospy has no public call for that window. True as well from the moment a
+    SIGINT or SIGTERM arrives, under shut_down_off_the_signal.
     """
-    return rospy.core.is_shutdown_requested()
+    return rospy.core.is_shutdown_requested() or _SignalShutdown.requested
+
+
+class _SignalShutdown:
+    """The node's SIGINT/SIGTERM: mark the request, then rospy's whole shutdown in a thread."""
+    requested = False
+
+    def __init__(self):
+        self._reason = None
+        self._wake = threading.Event()
+        self._done = threading.Event()
+        # A daemon, so that a node that never gets a signal exits as before; the exit waits
+        # for it only once it has work (_wait runs before rospy's own atexit shutdown).
+        threading.Thread(target=self._run, name='signal_shutdown', daemon=True).start()
+        atexit.register(self._wait)
+
+    def handle(self, signum, frame):
+        if self._reason is None:
+            self._reason = 'signal-%d' % signum
+            _SignalShutdown.requested = True
+            self._wake.set()
+        # As rospy's handler: a handler set before rospy's runs too; Python's default SIGINT
+        # handler's KeyboardInterrupt is dropped (the node shuts down instead).
+        previous = rospy.core._signalChain.get(signum)
+        if callable(previous):
+            with contextlib.suppress(KeyboardInterrupt):
+                previous(signum, frame)
+
+    def _run(self):
+        self._wake.wait()
+        try:
+            rospy.core.signal_shutdown(self._reason)
+        finally:
+            self._done.set()
+
+    def _wait(self):
+        if self._wake.is_set():
+            self._done.wait(SIGNAL_SHUTDOWN_WAIT_S)
+
+
+def shut_down_off_the_signal():
+    """Make the node's SIGINT and SIGTERM run rospy's shutdown in a thread, not in the signal.
+
+    Replaces the handler ``rospy.init_node`` installs, which runs the whole shutdown (its log
+    lines, every hook, closing every connection) inside whatever the signal interrupted. If
+    that was the node writing its log file, the shutdown's own lines fail ("reentrant call
+    inside BufferedWriter": a "Logging error" traceback on screen at Ctrl-C); if it held a
+    lock that the shutdown needs, the node hangs. This handler only marks the request
+    (shutdown_requested() turns true at once, so a loop makes no further cycle) and wakes a
+    thread that calls ``rospy.signal_shutdown``; the interpreter's exit waits for that thread
+    up to SIGNAL_SHUTDOWN_WAIT_S. Does nothing unless rospy's own handler is in place (it is
+    not under ``disable_signals=True``). Call from the main thread after rospy.init_node.
+    """
+    if signal.getsignal(signal.SIGINT) is not rospy.core._ros_signal:
+        return
+    handler = _SignalShutdown().handle
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        if signal.getsignal(signum) is rospy.core._ros_signal:
+            signal.signal(signum, handler)
 
 
 def name_mappings():

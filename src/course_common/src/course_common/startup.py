@@ -4,18 +4,27 @@ import functools
 
 import rospy
 
-from course_common.rospy_internals import cache_rosout_param, shutdown_requested
+from course_common.rospy_internals import (
+    cache_rosout_param,
+    shut_down_off_the_signal,
+    shutdown_requested,
+)
 
 
 def init_node(name, **kwargs):
-    """rospy.init_node(name, **kwargs), then one master call for rospy's /rosout parameter.
+    """rospy.init_node(name, **kwargs), its Ctrl-C made safe, one master call for /rosout's param.
 
-    Without it rospy asks the master for /rosout_disable_topics_generation on every log line
-    while that parameter is unset, as under a plain roscore (see
+    rospy's SIGINT/SIGTERM handler shuts the node down inside whatever the signal interrupted,
+    which can fail (a "Logging error" traceback at Ctrl-C) or hang; the node's shutdown runs
+    in a thread instead (course_common.rospy_internals.shut_down_off_the_signal).
+
+    Without the master call, rospy asks the master for /rosout_disable_topics_generation on
+    every log line while that parameter is unset, as under a plain roscore (see
     course_common.rospy_internals.cache_rosout_param). If the master cannot be asked (it
     went away), the node carries on as rospy would, one call per log line.
     """
     rospy.init_node(name, **kwargs)
+    shut_down_off_the_signal()
     try:
         cache_rosout_param()
     except (OSError, rospy.ROSException) as err:

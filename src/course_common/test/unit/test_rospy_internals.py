@@ -59,6 +59,16 @@ def test_shutdown_attributes_exist(attribute):
     pin(callable(getattr(rospy.core, attribute, None)), 'rospy.core.' + attribute, 'exists')
 
 
+def test_signal_handler_attributes_exist():
+    # shut_down_off_the_signal replaces rospy's handler only where it finds it, and chains to
+    # the handler rospy recorded as the previous one.
+    pin(callable(getattr(rospy.core, '_ros_signal', None)), 'rospy.core._ros_signal', 'exists')
+    pin(isinstance(getattr(rospy.core, '_signalChain', None), dict), 'rospy.core._signalChain',
+        'is a dict of the previous handlers')
+    pin(callable(getattr(rospy.core, 'signal_shutdown', None)), 'rospy.core.signal_shutdown',
+        'exists')
+
+
 def test_preshutdown_hooks_get_the_reason_while_shutdown_is_requested():
     """The hook gets the reason before is_shutdown() turns true; shutdown_requested() is true
     from the hooks on (rospy closes the topics there), and was not before."""

@@ -23,24 +23,24 @@ def test_a_death_by_a_signal_is_started_again_once_then_fails():
     rviz = _stand_in(['sh', '-c', 'kill -ABRT $$'])
     for _ in range(CRASH_RESTARTS):
         _dead(rviz)
-        assert rviz._alive_and(lambda: 'drawn') is None  # started again: the wait goes on
+        assert rviz.alive_and(lambda: 'drawn') is None  # started again: the wait goes on
     assert rviz.restarts == CRASH_RESTARTS
     _dead(rviz)
     with pytest.raises(AssertionError, match='rviz exited'):
-        rviz._alive_and(lambda: 'drawn')
+        rviz.alive_and(lambda: 'drawn')
 
 
 def test_an_exit_of_its_own_fails_at_once():
     rviz = _stand_in(['sh', '-c', 'exit 3'])
     _dead(rviz)
     with pytest.raises(AssertionError, match=r'rviz exited \(code 3\)'):
-        rviz._alive_and(lambda: 'drawn')
+        rviz.alive_and(lambda: 'drawn')
     assert rviz.restarts == 0
 
 
 def test_a_running_rviz_is_checked():
     rviz = _stand_in(['sleep', '30'])
     try:
-        assert rviz._alive_and(lambda: 'drawn') == 'drawn'
+        assert rviz.alive_and(lambda: 'drawn') == 'drawn'
     finally:
         rviz._rviz.stop()

@@ -8,6 +8,7 @@ the last fails if a node of the workspace starts without course_common.startup.i
 """
 import os
 import re
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -142,3 +143,57 @@ def test_a_loop_ends_quietly_when_shutdown_closes_its_topic(master, loop):
     assert done.stdout.split('\n')[-2:] == ['ended', ''], done.stdout + done.stderr
     assert 'published to a closed topic' not in done.stdout, done.stdout
     assert 'Traceback' not in done.stderr and 'closed topic' not in done.stderr, done.stderr
+
+
+# A signal that arrives while the node holds a lock its shutdown needs (rospy's log file's
+# writer, a connection's lock): a shutdown hook that takes the main thread's lock stands for
+# them. argv: how the node starts (startup or rospy), then the signal's number.
+HOOK_LOCK_WAIT_S = 2.0
+SIGNAL_PROBE = '''
+import os, sys, threading, time
+import rospy
+from course_common.rospy_internals import add_preshutdown_hook, shutdown_requested
+from course_common.startup import init_node
+(init_node if sys.argv[1] == 'startup' else rospy.init_node)('signal_probe')
+held, hook_ran = threading.Lock(), threading.Event()
+def needs_the_lock(_reason):
+    got = held.acquire(timeout=%(wait)s)
+    where = 'main' if threading.current_thread() is threading.main_thread() else 'thread'
+    print('hook in', where, 'got the lock' if got else 'without the lock', flush=True)
+    hook_ran.set()
+add_preshutdown_hook(needs_the_lock)
+with held:
+    os.kill(os.getpid(), int(sys.argv[2]))
+    deadline = time.monotonic() + %(wait)s * 2
+    while not shutdown_requested() and time.monotonic() < deadline:
+        time.sleep(0.001)
+    print('requested', shutdown_requested(), 'hook ran', hook_ran.is_set(), flush=True)
+print('main done', flush=True)
+''' % {'wait': HOOK_LOCK_WAIT_S}
+
+
+def run_signal_probe(master, start, signum):
+    done = subprocess.run([sys.executable, '-c', SIGNAL_PROBE, start, str(int(signum))],
+                          capture_output=True, text=True, timeout=RUN_TIMEOUT_S,
+                          env=probe_env(master), check=False)
+    return done.returncode, done.stdout.splitlines(), done.stderr
+
+
+@pytest.mark.parametrize('signum', [signal.SIGINT, signal.SIGTERM], ids=['SIGINT', 'SIGTERM'])
+def test_a_signal_shuts_the_node_down_outside_what_it_interrupted(master, signum):
+    code, lines, stderr = run_signal_probe(master, 'startup', signum)
+    assert code == 0, stderr
+    # Requested at once (a loop stops), the hook not yet run: the handler only marked it.
+    assert lines[0] == 'requested True hook ran False', lines
+    # The shutdown ran in a thread and got the lock once the main thread let it go, and the
+    # exit waited for it although the main thread had finished.
+    assert sorted(lines[1:]) == ['hook in thread got the lock', 'main done'], lines
+    assert 'Traceback' not in stderr, stderr
+
+
+def test_plain_rospy_still_shuts_down_inside_the_signal(master):
+    code, lines, _ = run_signal_probe(master, 'rospy', signal.SIGINT)
+    assert code == 0
+    assert lines[0] == 'hook in main without the lock', (
+        'rospy no longer runs its shutdown inside the signal handler (%r): '
+        'rospy_internals.shut_down_off_the_signal may go' % lines)

@@ -25,8 +25,9 @@ from course_common.xvfb import Xvfb
 SCREEN = (1024, 800)
 START_DEADLINE_S = 60.0  # rviz with software GL on a loaded 2-core machine
 # Debian's rviz 1.14.19 now and then aborts as it starts ("free(): invalid next size", once in
-# some 35 starts beside the whole suite): a death by a signal before the view is checked is
-# tried once more, within the same deadline; a second one, or an exit, fails.
+# some 35 starts beside the whole suite; once just after subscribing): a death by a signal
+# while a view is awaited is tried once more, within the same deadline; a second one, or an
+# exit, fails.
 CRASH_RESTARTS = 1
 
 
@@ -84,7 +85,10 @@ class RvizOnXvfb:
         """The screen as an H x W x 3 uint8 array."""
         return np.asarray(ImageGrab.grab(xdisplay=self.display).convert('RGB'))
 
-    def _alive_and(self, check):
+    def alive_and(self, check):
+        """check() while rviz runs, for wait_for. rviz's death by a signal (its own crash)
+        starts it again, CRASH_RESTARTS times, and returns None: the wait goes on. An exit of
+        its own, or one crash too many, raises naming the exit code and rviz's last lines."""
         if not self.running():
             code = self._rviz.returncode
             if code is not None and code < 0 and self.restarts < CRASH_RESTARTS:
@@ -97,7 +101,7 @@ class RvizOnXvfb:
         return check()
 
     def wait_subscribed(self, timeout_s=START_DEADLINE_S):
-        wait_for(lambda: self._alive_and(lambda: not self.missing_topics()), timeout_s,
+        wait_for(lambda: self.alive_and(lambda: not self.missing_topics()), timeout_s,
                  'rviz subscribed to %s' % ', '.join(self.topics))
 
     def wait_lesson_drawn(self, robots, labels, timeout_s=START_DEADLINE_S):
@@ -106,7 +110,7 @@ class RvizOnXvfb:
         def drawn():
             shot = self.grab()
             return [shot] if shows_lesson(shot, robots, labels) else None
-        return wait_for(lambda: self._alive_and(drawn), timeout_s,
+        return wait_for(lambda: self.alive_and(drawn), timeout_s,
                         'rviz drawing the arena, %d robot(s) and %d label(s)' % (robots, labels))[0]
 
     def capture(self, out_path, robots, labels, timeout_s=START_DEADLINE_S):
