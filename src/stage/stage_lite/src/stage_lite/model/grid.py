@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from .jit import njit
+from .jit import njit, unsigned
 
 RBITS = 5                    # Stage: a region is 2^5 x 2^5 cells
 REGION = 1 << RBITS          # 32
@@ -101,13 +101,13 @@ def entry_of(layer, k, rc_x):
 def hold_page(reg, reg_dyn, dyn_head, free_state, page_free):
     """The page of region reg's moving bodies, taken from the pool if it has none (the pool
     must have one)."""
-    page = reg_dyn[reg]
+    page = reg_dyn[unsigned(reg)]
     if page < 0:
         free_state[0] -= 1
         page = page_free[free_state[0]]
         dyn_head[page, 0, :] = -1
         dyn_head[page, 1, :] = -1
-        reg_dyn[reg] = page
+        reg_dyn[unsigned(reg)] = page
     return page
 
 
@@ -117,34 +117,34 @@ def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_
     """Block::UnMap: out of every cell it was drawn into (each of its entries unlinked from
     its cell's list, the others kept in order), one count off the region per drawing; a
     region's page back to the pool when its last entry goes."""
-    s = rc_start[b]
-    for k in range(rc_len[layer, b]):
-        gx = rc_x[layer, s + k]
-        gy = rc_y[layer, s + k]
+    s = rc_start[unsigned(b)]
+    for k in range(rc_len[unsigned(layer), unsigned(b)]):
+        gx = rc_x[unsigned(layer), unsigned(s + k)]
+        gy = rc_y[unsigned(layer), unsigned(s + k)]
         reg = region_index(gx, gy, rx0, ry0, nrx, nry)
-        page = reg_dyn[reg]
+        page = reg_dyn[unsigned(reg)]
         cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
         e = entry_of(layer, s + k, rc_x)
-        nxt = ent_next[e]
-        prv = ent_prev[e]
-        head = dyn_head[page, layer, cell]
+        nxt = ent_next[unsigned(e)]
+        prv = ent_prev[unsigned(e)]
+        head = dyn_head[unsigned(page), unsigned(layer), unsigned(cell)]
         if e == head:
-            dyn_head[page, layer, cell] = nxt
+            dyn_head[unsigned(page), unsigned(layer), unsigned(cell)] = nxt
             if nxt >= 0:
-                ent_prev[nxt] = prv          # the new head keeps the tail
+                ent_prev[unsigned(nxt)] = prv          # the new head keeps the tail
         else:
-            ent_next[prv] = nxt
+            ent_next[unsigned(prv)] = nxt
             if nxt >= 0:
-                ent_prev[nxt] = prv
+                ent_prev[unsigned(nxt)] = prv
             else:
-                ent_prev[head] = prv         # e was the tail
-        reg_count[reg] -= 1
-        reg_dyncount[reg] -= 1
-        if reg_dyncount[reg] == 0:
+                ent_prev[unsigned(head)] = prv         # e was the tail
+        reg_count[unsigned(reg)] -= 1
+        reg_dyncount[unsigned(reg)] -= 1
+        if reg_dyncount[unsigned(reg)] == 0:
             page_free[free_state[0]] = page
             free_state[0] += 1
-            reg_dyn[reg] = -1
-    rc_len[layer, b] = 0
+            reg_dyn[unsigned(reg)] = -1
+    rc_len[unsigned(layer), unsigned(b)] = 0
 
 
 @njit(cache=True)
@@ -160,9 +160,9 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
     each cell's list from its head): its robot's own entries never count there,
     and nothing else changes while its robot is drawn, so this is what collides() would say
     of the block once its robot is drawn. Returns that (NO_HIT without `test`)."""
-    s = rc_start[b]
+    s = rc_start[unsigned(b)]
     end = poly_cells(vx, vy, rc_x[layer], rc_y[layer], s)
-    rc_len[layer, b] = end - s
+    rc_len[unsigned(layer), unsigned(b)] = end - s
     m = blk_model[b]
     testing = test and model_obstacle[m]
     hit = NO_HIT
@@ -171,40 +171,40 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
         testing = False
     bit = np.uint32(1) << np.uint32(blk_class[b])
     for k in range(s, end):
-        gx = rc_x[layer, k]
-        gy = rc_y[layer, k]
+        gx = rc_x[unsigned(layer), unsigned(k)]
+        gy = rc_y[unsigned(layer), unsigned(k)]
         reg = region_index(gx, gy, rx0, ry0, nrx, nry)
         page = hold_page(reg, reg_dyn, dyn_head, free_state, page_free)
         cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
         if testing:
-            spage = reg_static[reg]
-            if spage >= 0 and (st_coll[spage, cell] & bit) != 0:
+            spage = reg_static[unsigned(reg)]
+            if spage >= 0 and (st_coll[unsigned(spage), unsigned(cell)] & bit) != 0:
                 hit = STATIC
                 testing = False
         e = entry_of(layer, k, rc_x)
-        ent_block[e] = b
-        ent_seq[e] = seq
-        ent_next[e] = -1
-        head = dyn_head[page, layer, cell]
+        ent_block[unsigned(e)] = b
+        ent_seq[unsigned(e)] = seq
+        ent_next[unsigned(e)] = -1
+        head = dyn_head[unsigned(page), unsigned(layer), unsigned(cell)]
         if head < 0:
-            dyn_head[page, layer, cell] = e
-            ent_prev[e] = e
+            dyn_head[unsigned(page), unsigned(layer), unsigned(cell)] = e
+            ent_prev[unsigned(e)] = e
         else:
             if testing:
                 other = head
                 while other >= 0:
-                    if _blocks(m, b, ent_block[other], blk_model, blk_zmin, blk_zmax,
+                    if _blocks(m, b, ent_block[unsigned(other)], blk_model, blk_zmin, blk_zmax,
                                model_root, model_obstacle):
-                        hit = blk_model[ent_block[other]]
+                        hit = blk_model[ent_block[unsigned(other)]]
                         testing = False
                         break
-                    other = ent_next[other]
-            tail = ent_prev[head]
-            ent_next[tail] = e
-            ent_prev[e] = tail
-            ent_prev[head] = e
-        reg_count[reg] += 1
-        reg_dyncount[reg] += 1
+                    other = ent_next[unsigned(other)]
+            tail = ent_prev[unsigned(head)]
+            ent_next[unsigned(tail)] = e
+            ent_prev[unsigned(e)] = tail
+            ent_prev[unsigned(head)] = e
+        reg_count[unsigned(reg)] += 1
+        reg_dyncount[unsigned(reg)] += 1
     return hit
 
 
@@ -231,23 +231,23 @@ def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, re
         if blk_zmin[b] < 0.0:
             return GROUND
         bit = np.uint32(1) << np.uint32(blk_class[b])
-        s = rc_start[b]
-        for k in range(rc_len[layer, b]):
-            gx = rc_x[layer, s + k]
-            gy = rc_y[layer, s + k]
+        s = rc_start[unsigned(b)]
+        for k in range(rc_len[unsigned(layer), unsigned(b)]):
+            gx = rc_x[unsigned(layer), unsigned(s + k)]
+            gy = rc_y[unsigned(layer), unsigned(s + k)]
             reg = region_index(gx, gy, rx0, ry0, nrx, nry)
             cell = (gy & (REGION - 1)) * REGION + (gx & (REGION - 1))
-            spage = reg_static[reg]
-            if spage >= 0 and (st_coll[spage, cell] & bit) != 0:
+            spage = reg_static[unsigned(reg)]
+            if spage >= 0 and (st_coll[unsigned(spage), unsigned(cell)] & bit) != 0:
                 return STATIC
-            page = reg_dyn[reg]
+            page = reg_dyn[unsigned(reg)]
             if page >= 0:
-                e = dyn_head[page, layer, cell]
+                e = dyn_head[unsigned(page), unsigned(layer), unsigned(cell)]
                 while e >= 0:
-                    if _blocks(m, b, ent_block[e], blk_model, blk_zmin, blk_zmax, model_root,
-                               model_obstacle):
-                        return blk_model[ent_block[e]]
-                    e = ent_next[e]
+                    if _blocks(m, b, ent_block[unsigned(e)], blk_model, blk_zmin, blk_zmax,
+                               model_root, model_obstacle):
+                        return blk_model[ent_block[unsigned(e)]]
+                    e = ent_next[unsigned(e)]
     return NO_HIT
 
 

@@ -8,6 +8,8 @@ all at ./ws build, first dropping the whole cache when any source of the package
 """
 import os
 
+import numpy as np
+
 # The threads of the parallel kernels sleep when idle, in every program: at real time
 # stageros waits about 100 ms between steps, and OpenMP's default (spinning up to 300 000
 # times first, about 10 ms here) would burn part of a core meanwhile; flat out (`stage -g`)
@@ -29,4 +31,10 @@ except ImportError:  # pragma: no cover - python3-numba is a dependency
     def numba_threads():
         return 1
 
-__all__ = ['njit', 'numba_threads', 'prange']
+#: A kernel's array index as numba takes it without a test, for an index that is never
+#: negative: numba tests every signed index for a negative value (which counts from the end,
+#: as in Python) and takes an unsigned one as it is. In the grid's loops over a body's cells
+#: those tests were half of each cell's cost (grid.py).
+unsigned = np.uint64
+
+__all__ = ['njit', 'numba_threads', 'prange', 'unsigned']
