@@ -20,7 +20,7 @@ The rules that decide the path:
 """
 import numpy as np
 
-from stage_lite.model.jit import njit
+from stage_lite.model.jit import kernel, njit
 
 BLOCKED = 9      # a cell of this cost or more cannot be entered
 NO_PATH = -1
@@ -40,21 +40,21 @@ def astar(costs, width, height, start, goal):
     return [] if n == NO_PATH else [(int(x), int(y)) for x, y in out[:n]]
 
 
-@njit(cache=True)
+@kernel
 def _cost(grid, width, height, x, y):
     if x < 0 or y < 0 or x >= width or y >= height:
         return BLOCKED
     return grid[y * width + x]
 
 
-@njit(cache=True)
+@kernel
 def _heuristic(x, y, gx, gy):
     return np.float32(abs(np.float32(x) - np.float32(gx))) + \
         np.float32(abs(np.float32(y) - np.float32(gy)))
 
 
 # libstdc++'s heap algorithms on a vector of node ids, ordered by "a after b" = f[a] > f[b]
-@njit(cache=True)
+@kernel
 def _sift_up(heap, f, hole, top, node):
     parent = (hole - 1) // 2
     while hole > top and f[heap[parent]] > f[node]:
@@ -64,7 +64,7 @@ def _sift_up(heap, f, hole, top, node):
     heap[hole] = node
 
 
-@njit(cache=True)
+@kernel
 def _adjust(heap, f, hole, length, node):
     top = hole
     child = hole
@@ -81,7 +81,7 @@ def _adjust(heap, f, hole, length, node):
     _sift_up(heap, f, hole, top, node)
 
 
-@njit(cache=True)
+@kernel
 def _pop(heap, f, length):
     """pop_heap: the front moves to the back (length - 1)."""
     if length > 1:
@@ -91,7 +91,7 @@ def _pop(heap, f, length):
         _adjust(heap, f, 0, last, node)
 
 
-@njit(cache=True)
+@kernel
 def _make(heap, f, length):
     if length < 2:
         return

@@ -6,7 +6,7 @@ half the rest. And the avoid step fasr and fasr2 take on it (their ObstacleAvoid
 controller itself (no init)."""
 import numpy as np
 
-from stage_lite.model.jit import njit
+from stage_lite.model.jit import kernel
 
 AVOID_PART = 4        # fasr's and fasr2's avoid step reads the scan's middle half
 
@@ -34,7 +34,7 @@ def avoid_step(pos, scan, count, front, stop, speed, turn, duration):
     return True, count - 1
 
 
-@njit(cache=True)
+@kernel
 def _beam_rule(scan, part, front, stop):
     n = scan.shape[0]
     obstruction = False

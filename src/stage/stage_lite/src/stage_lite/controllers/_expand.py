@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stage_lite.model.jit import njit
+from stage_lite.model.jit import kernel, njit
 from stage_lite.model.robot_state import MODE_CODE
 
 VELOCITY = MODE_CODE['velocity']
@@ -150,7 +150,7 @@ def heading_trig(headings):
     return cos, sin
 
 
-@njit(cache=True)
+@kernel
 def _steer_all(rows, beams, first, cos, sin, count, clear_k, clear_least, clear_n, speed,
                gain, safe, row, goal, mode):
     """steer() of the steerings `rows` in turn; returns how many were done (one whose
@@ -174,7 +174,7 @@ def _steer_all(rows, beams, first, cos, sin, count, clear_k, clear_least, clear_
     return n
 
 
-@njit(cache=True)
+@kernel
 def sensors_sum_trig(beams, first, cos, sin, count):
     """sensors_sum with the headings' cosines and sines given (heading_trig)."""
     dx = 0.0
@@ -186,7 +186,7 @@ def sensors_sum_trig(beams, first, cos, sin, count):
     return dx, dy
 
 
-@njit(cache=True)
+@kernel
 def sensors_sum(beams, first, headings, count):
     """(dx, dy): the first `count` sensors' first ranges along their headings, added in
     order as the C loops add them (first: each sensor's first beam in beams)."""
@@ -200,7 +200,7 @@ def sensors_sum(beams, first, headings, count):
     return dx, dy
 
 
-@njit(cache=True)
+@kernel
 def all_clear(beams, first, sensors, least, count):
     """Whether each of the first `count` (sensor, least range) pairs reads more than its
     least, in order (C's && stops at the first that does not)."""
@@ -210,7 +210,7 @@ def all_clear(beams, first, sensors, least, count):
     return True
 
 
-@njit(cache=True)
+@kernel
 def set_velocity(goal, mode, r, forward, turn):
     """SetSpeed(forward, 0, turn) of robot row r, in the robots' arrays."""
     goal[r, 0] = forward

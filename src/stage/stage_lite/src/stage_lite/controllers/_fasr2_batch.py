@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from stage_lite.model.glibc_random import random_next
-from stage_lite.model.jit import njit
+from stage_lite.model.jit import kernel
 from stage_lite.model.motion import normalize
 from stage_lite.model.robot_state import MODE_CODE
 
@@ -127,7 +127,7 @@ class Fasr2Batch:
         plan['goal_half'] = np.array([reach(m) for m in goals], np.float64)
 
 
-@njit(cache=True)
+@kernel
 def _work_all(rows, simple, kind, goal, wait, avoid, hungry, plan, cached, goal_xy, goal_half,
               xs, ys, off, beams, first, samples, pose, row, command, mode, table, pointers,
               front, stop, avoid_speed, avoid_turn, avoid_duration, cruise, replan_move,

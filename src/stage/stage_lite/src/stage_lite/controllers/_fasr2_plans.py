@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from stage_lite.model.jit import njit
+from stage_lite.model.jit import kernel
 from stage_lite.model.stage_api import normalize
 
 from ._astar import BLOCKED, astar
@@ -64,7 +64,7 @@ class Plan:
         return normalize(math.atan2(self.ys[best] - y, self.xs[best] - x) + LANE_BIAS)
 
 
-@njit(cache=True)
+@kernel
 def best_node(xs, ys, start, end, x, y, within):
     """The first node of xs[start:end] within range (values rise with the index: the first
     has the least), its place in xs; -1 for none."""

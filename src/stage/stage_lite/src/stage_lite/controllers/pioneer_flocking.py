@@ -17,7 +17,7 @@ import weakref
 import numpy as np
 
 from stage_lite.model.glibc_random import drand48_next
-from stage_lite.model.jit import njit
+from stage_lite.model.jit import kernel
 
 from ._expand import all_clear, sensors_sum, set_velocity
 
@@ -210,7 +210,7 @@ Flocker.ranger_update.batch = BATCH
 Flocker.fiducial_update.batch = BATCH
 
 
-@njit(cache=True)
+@kernel
 def _flock_all(rows, kind, who, found, near, beams, first, headings, row, sees, heading, goal,
                mode, rand48):
     """Flocker.ranger_update and .fiducial_update of the entries `rows` in turn; returns how

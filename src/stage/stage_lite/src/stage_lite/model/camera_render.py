@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from .jit import njit, prange
+from .jit import kernel, njit, prange
 
 CLEAR_RGBA = (0.7, 0.7, 0.8, 1.0)     # Canvas::InitGl's glClearColor
 FLOOR_RGBA = (1.0, 1.0, 1.0, 1.0)     # Canvas::DrawFloor's glColor4f
@@ -185,7 +185,7 @@ class Scene:
         return table[index]
 
 
-@njit(cache=True)
+@kernel
 def _inside(px, py, edges, e0, e1):
     """Even-odd: is (px, py) inside the contours edges[e0:e1]?"""
     inside = False
@@ -196,7 +196,7 @@ def _inside(px, py, edges, e0, e1):
     return inside
 
 
-@njit(cache=True)
+@kernel
 def _box_entry(ox, oy, oz, dx, dy, dz, box, t_lo, t_hi):
     """The ray's entry into the box clipped to [t_lo, t_hi], or -1 if it misses."""
     lo, hi = t_lo, t_hi
@@ -219,7 +219,7 @@ def _box_entry(ox, oy, oz, dx, dy, dz, box, t_lo, t_hi):
     return lo
 
 
-@njit(cache=True)
+@kernel
 def _push(factor, rot, nx, ny, nz, h, scale_near, du, dv):
     """The polygon offset of a plane n . (p - eye) = h (n in the world, h its signed distance
     from the eye): factor x the larger of its window-depth slopes per column and per row.

@@ -14,7 +14,7 @@ consume runs in a numba kernel.
 """
 import numpy as np
 
-from .jit import njit
+from .jit import kernel
 
 #: an item's interval when it is not queued again (an unsubscribed model)
 DROP = -1
@@ -112,7 +112,7 @@ def _grown(a, fill):
 
 
 # libstdc++'s __push_heap: `less(parent, value)` is parent.time > value.time
-@njit(cache=True)
+@kernel
 def _sift_up(times, slots, hole, top, time, slot):
     parent = (hole - 1) // 2
     while hole > top and times[parent] > time:
@@ -124,14 +124,14 @@ def _sift_up(times, slots, hole, top, time, slot):
     slots[hole] = slot
 
 
-@njit(cache=True)
+@kernel
 def _push(times, slots, n, time, slot):
     _sift_up(times, slots, n, 0, time, slot)
 
 
 # libstdc++'s __adjust_heap: the hole at the root walks down to a leaf, by the child that
 # is not less (the earlier time; the right one on a tie), then the value sifts up
-@njit(cache=True)
+@kernel
 def _adjust(times, slots, hole, length, time, slot):
     top = hole
     child = hole
@@ -150,7 +150,7 @@ def _adjust(times, slots, hole, length, time, slot):
     _sift_up(times, slots, hole, top, time, slot)
 
 
-@njit(cache=True)
+@kernel
 def _consume(times, slots, n, now, interval, out):
     """Pops every event due at or before now into out (slots, in order), pushing each again
     at now + interval[slot] unless that is DROP; returns (how many, the heap's new size).

@@ -13,7 +13,7 @@ from operator import attrgetter
 
 import numpy as np
 
-from .jit import njit, prange
+from .jit import kernel, njit, prange
 from .motion import normalize
 from .motion import pose_add as pose_add_kernel
 from .raytrace import trace
@@ -100,7 +100,7 @@ class _Seen:
         self.nearest = nearest
 
 
-@njit(cache=True)
+@kernel
 def _bisect_right(keys, order, x):
     """bisect.bisect_right over keys[order[...]] (sorted or not, as Python's does it)."""
     lo = 0

@@ -14,7 +14,7 @@ if every draw comes from the same stream in the same order:
 """
 import numpy as np
 
-from .jit import njit
+from .jit import kernel
 
 RAND_MAX = 2 ** 31 - 1
 _DEGREE, _SEPARATION = 31, 3
@@ -93,7 +93,7 @@ class Rand48:
         return x / float(1 << 48)
 
 
-@njit(cache=True)
+@kernel
 def drand48_next(state):
     """Rand48.drand48 in a kernel, on its state array (uint64 arithmetic wraps mod 2^64,
     of which 2^48 is a divisor)."""
@@ -102,7 +102,7 @@ def drand48_next(state):
     return x / float(1 << 48)
 
 
-@njit(cache=True)
+@kernel
 def random_next(table, pointers):
     """Random.random in a kernel, on its state arrays (table, pointers)."""
     f = pointers[0]
@@ -114,7 +114,7 @@ def random_next(table, pointers):
     return value >> 1
 
 
-@njit(cache=True)
+@kernel
 def _fill(table, pointers, out):
     for k in range(out.shape[0]):
         out[k] = random_next(table, pointers)

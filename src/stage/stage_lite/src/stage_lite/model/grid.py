@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from .jit import njit, unsigned
+from .jit import kernel, unsigned
 
 RBITS = 5                    # Stage: a region is 2^5 x 2^5 cells
 REGION = 1 << RBITS          # 32
@@ -31,7 +31,7 @@ GROUND = -2                  # collides(): a block below the floor (Stage's grou
 STATIC = -3                  # collides(): a static obstacle
 
 
-@njit(cache=True)
+@kernel
 def poly_cells(vx, vy, out_x, out_y, start):
     """Stage's MapPoly: the cells of a closed polygon's outline, each edge a 4-connected
     line from its first vertex's cell, not including its last; written to out[start:]
@@ -69,7 +69,7 @@ def poly_cells(vx, vy, out_x, out_y, start):
     return k
 
 
-@njit(cache=True)
+@kernel
 def poly_cell_count(vx, vy):
     n = vx.shape[0]
     total = 0
@@ -78,7 +78,7 @@ def poly_cell_count(vx, vy):
     return total
 
 
-@njit(cache=True)
+@kernel
 def region_index(gx, gy, rx0, ry0, nrx, nry):
     """Index into the region table of global cell (gx, gy), -1 outside the table."""
     tx = (gx >> RBITS) - rx0
@@ -90,14 +90,14 @@ def region_index(gx, gy, rx0, ry0, nrx, nry):
 
 # ---- moving bodies: Stage's Map / UnMap / TestCollision ----------------------------------
 
-@njit(cache=True)
+@kernel
 def entry_of(layer, k, rc_x):
     """The entry of a drawing's cell rc_x[layer, k]: one per cell a block's drawing can
     take, in each layer."""
     return layer * rc_x.shape[1] + k
 
 
-@njit(cache=True)
+@kernel
 def hold_page(reg, reg_dyn, dyn_head, free_state, page_free):
     """The page of region reg's moving bodies, taken from the pool if it has none (the pool
     must have one)."""
@@ -111,7 +111,7 @@ def hold_page(reg, reg_dyn, dyn_head, free_state, page_free):
     return page
 
 
-@njit(cache=True)
+@kernel
 def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count,
                 reg_dyn, reg_dyncount, dyn_head, ent_next, ent_prev, free_state, page_free):
     """Block::UnMap: out of every cell it was drawn into (each of its entries unlinked from
@@ -147,7 +147,7 @@ def unmap_block(b, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_
     rc_len[unsigned(layer), unsigned(b)] = 0
 
 
-@njit(cache=True)
+@kernel
 def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry,
               reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block, ent_next, ent_prev,
               ent_seq, free_state, page_free, test, reg_static, st_coll, blk_class, blk_model,
@@ -208,7 +208,7 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
     return hit
 
 
-@njit(cache=True)
+@kernel
 def _blocks(m, b, b2, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle):
     """Whether block b2 stands in the way of block b (of model m): Block::TestCollision's
     rule (another obstacle model of another tree, their height ranges meeting)."""
@@ -217,7 +217,7 @@ def _blocks(m, b, b2, blk_model, blk_zmin, blk_zmax, model_root, model_obstacle)
             and blk_zmin[b2] <= blk_zmax[b] and blk_zmax[b2] >= blk_zmin[b])
 
 
-@njit(cache=True)
+@kernel
 def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_static,
              reg_dyn, st_coll, blk_class, dyn_head, ent_block, ent_next, blk_model, blk_zmin,
              blk_zmax, model_root, model_obstacle):
@@ -251,7 +251,7 @@ def collides(blocks, layer, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, re
     return NO_HIT
 
 
-@njit(cache=True)
+@kernel
 def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_len, rc_x,
            rc_y, rx0, ry0, nrx, nry, reg_count, reg_dyn, reg_dyncount, dyn_head, ent_block,
            ent_next, ent_prev, ent_seq, free_state, page_free, test, reg_static, st_coll,
@@ -284,7 +284,7 @@ def redraw(blocks, poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start, rc_l
     return hit
 
 
-@njit(cache=True)
+@kernel
 def move(blocks, new_poses, old_poses, seqs, layer, ppm, pts, pts_off, vx, vy, rc_start,
          rc_len, rc_x, rc_y, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, reg_dyncount,
          st_coll, blk_class, dyn_head, ent_block, ent_next, ent_prev, ent_seq, free_state,

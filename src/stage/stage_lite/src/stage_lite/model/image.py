@@ -19,7 +19,7 @@ import io
 
 import numpy as np
 
-from .jit import njit
+from .jit import kernel, njit
 from .worldfile import WorldError
 
 #: Stage: a pixel whose first channel is above this is free floor.
@@ -156,7 +156,7 @@ def boundary_edges(occ):
     return edges[order]
 
 
-@njit(cache=True)
+@kernel
 def _direction(a):
     return 0.0 if a == 0.0 else (-1.0 if a < 0.0 else 1.0)
 

@@ -21,7 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from . import grid
-from .jit import njit, numba_threads
+from .jit import kernel, njit, numba_threads, unsigned
 from .robot_state import MODE_CODE
 
 VELOCITY = MODE_CODE['velocity']
@@ -36,7 +36,7 @@ MOVE_CELLS = 20
 APART_CELLS = 15000
 
 
-@njit(cache=True)
+@kernel
 def normalize(a):
     """pose.stage_normalize."""
     while a < -math.pi:
@@ -46,20 +46,20 @@ def normalize(a):
     return a
 
 
-@njit(cache=True)
+@kernel
 def pose_add(px, py, pz, pa, qx, qy, qz, qa):
     """pose.pose_add."""
     return pose_add_turned(px, py, pz, pa, math.cos(pa), math.sin(pa), qx, qy, qz, qa)
 
 
-@njit(cache=True)
+@kernel
 def pose_add_turned(px, py, pz, pa, cosa, sina, qx, qy, qz, qa):
     """pose_add with cos(pa) and sin(pa) given (computed once for poses added to one)."""
     return (px + qx * cosa - qy * sina, py + qx * sina + qy * cosa, pz + qz,
             normalize(pa + qa))
 
 
-@njit(cache=True)
+@kernel
 def chain(pose, i, el_pose, el_stack, el_zadd, start, end):
     """Robot i's pose carried through the elements start..end: each a pose added (as
     Model::GetGlobalPose adds a child's pose to its parent's), then, where el_stack says,
@@ -73,7 +73,7 @@ def chain(pose, i, el_pose, el_stack, el_zadd, start, end):
     return x, y, z, a
 
 
-@njit(cache=True)
+@kernel
 def chain_poses(targets, t_robot, t_off, t_shared, t_prefix, el_pose, el_stack, el_zadd, pose,
                 out):
     """out[i] = the pose of target targets[i] (its robot's pose through its elements). Targets
@@ -107,12 +107,12 @@ def chain_poses(targets, t_robot, t_off, t_shared, t_prefix, el_pose, el_stack, 
         out[i, 3] = a
 
 
-@njit(cache=True)
+@kernel
 def _clamp(v, lo, hi):
     return lo if v < lo else (hi if v > hi else v)
 
 
-@njit(cache=True)
+@kernel
 def _bounded(v, lo, hi):
     """Python's min(max(v, lo), hi), ties and signed zeros included."""
     v = lo if lo > v else v
@@ -170,7 +170,7 @@ def update_positions(due, subscribed, goal, mode, velocity, est, pose, drive, wh
                 error[i, 1], error[i, 3])
 
 
-@njit(cache=True)
+@kernel
 def odometry_step(x, y, a, vx, vy, va, dt, ex, ey, ea):
     """ModelPosition::Update's odometry: the estimate (x, y, a) moved by the velocity over
     dt with the integration error (ex, ey, ea); the new (x, y, a)."""
@@ -184,7 +184,7 @@ def odometry_step(x, y, a, vx, vy, va, dt, ex, ey, ea):
     return x, y, a
 
 
-@njit(cache=True)
+@kernel
 def _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, rows):
     """World._body_rows: per block of robot i's tree, its model's body (x, y, cos, sin)."""
     n = 0
@@ -200,7 +200,7 @@ def _body_rows(i, pose, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, ro
             n += 1
 
 
-@njit(cache=True)
+@kernel
 def _outside(rows, nb, blocks, blk_radius, ppm, rx0, ry0, nrx, nry, box):
     """Space.hold's test: whether robot's blocks at these body rows could reach out of the
     region table; box gets the cell box Space.resize then takes."""
@@ -222,7 +222,7 @@ def _outside(rows, nb, blocks, blk_radius, ppm, rx0, ry0, nrx, nry, box):
             or (box[2] >> grid.RBITS) >= rx0 + nrx or (box[3] >> grid.RBITS) >= ry0 + nry)
 
 
-@njit(cache=True)
+@kernel
 def _draws(i, subscribed, velocity, r_blk_off):
     """Whether robot i's move this step draws it in the grid: subscribed, with a speed,
     with blocks."""
@@ -231,7 +231,7 @@ def _draws(i, subscribed, velocity, r_blk_off):
                  or velocity[i, 3] != 0.0))
 
 
-@njit(cache=True)
+@kernel
 def seq_bases(subscribed, velocity, r_bm_off, r_blk_off, seq, bases):
     """bases[i]: the drawing number robot i's move counts on from, the moves taken in order,
     each move that draws taking two per body of the robot (its tried drawing's, then its
@@ -243,7 +243,7 @@ def seq_bases(subscribed, velocity, r_bm_off, r_blk_off, seq, bases):
     return seq
 
 
-@njit(cache=True)
+@kernel
 def move_work(subscribed, velocity, r_blk_off, r_blocks, rc_len, layer):
     """What a step's moves will cost, in outline cells: per robot whose move draws, the
     cells of its outline in `layer` (those it erases, about as many as it draws) and
@@ -257,14 +257,14 @@ def move_work(subscribed, velocity, r_blk_off, r_blocks, rc_len, layer):
     return work
 
 
-@njit(cache=True)
+@kernel
 def _tried(pose, velocity, i, dt):
     """Robot i's pose after a step at its velocity (the move it tries)."""
     return pose_add(pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3], velocity[i, 0] * dt,
                     velocity[i, 1] * dt, velocity[i, 2] * dt, normalize(velocity[i, 3] * dt))
 
 
-@njit(cache=True)
+@kernel
 def _move_one(i, base, check, subscribed, velocity, pose, stalled, twist, dt, layer, r_bm_off,
               bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks, new_rows,
               old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy, rc_start,
@@ -325,7 +325,7 @@ def _move_one(i, base, check, subscribed, velocity, pose, stalled, twist, dt, la
     return True
 
 
-@njit(cache=True, nogil=True)
+@kernel(nogil=True)
 def move_robots(order, first, check, bases, subscribed, velocity, pose, stalled, twist, dt,
                 layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack, el_zadd, r_blk_off, r_blocks,
                 new_rows, old_rows, seqs, box, blk_radius, blk_pages, ppm, pts, pts_off, vx, vy,
@@ -352,7 +352,7 @@ def move_robots(order, first, check, bases, subscribed, velocity, pose, stalled,
     return -1
 
 
-@njit(cache=True)
+@kernel
 def _cell_box(i, pose, velocity, dt, layer, r_bm_off, bm_nblk, t_off, el_pose, el_stack,
               el_zadd, r_blk_off, r_blocks, rows, blk_radius, ppm, rc_start, rc_len, rc_x, rc_y,
               out):
@@ -364,10 +364,12 @@ def _cell_box(i, pose, velocity, dt, layer, r_bm_off, bm_nblk, t_off, el_pose, e
         b = r_blocks[k]
         s = rc_start[b]
         for c in range(s, s + rc_len[layer, b]):
-            x0 = min(x0, rc_x[layer, c])
-            x1 = max(x1, rc_x[layer, c])
-            y0 = min(y0, rc_y[layer, c])
-            y1 = max(y1, rc_y[layer, c])
+            gx = rc_x[unsigned(layer), unsigned(c)]
+            gy = rc_y[unsigned(layer), unsigned(c)]
+            x0 = min(x0, gx)
+            x1 = max(x1, gx)
+            y0 = min(y0, gy)
+            y1 = max(y1, gy)
     keep = (pose[i, 0], pose[i, 1], pose[i, 2], pose[i, 3])
     nb = r_blk_off[i + 1] - r_blk_off[i]
     for tried in range(2):
@@ -381,7 +383,7 @@ def _cell_box(i, pose, velocity, dt, layer, r_bm_off, bm_nblk, t_off, el_pose, e
     out[0], out[1], out[2], out[3] = x0, y0, x1, y1
 
 
-@njit(cache=True)
+@kernel
 def _sides(cells, boxes, draws, weight, axis, split, head, entry_robot, entry_next, touched,
            rx0, ry0, nrx, side):
     """side[i] for a split of the regions at `split` along `axis` (0: x, 1: y): 0 for a
@@ -537,7 +539,7 @@ def plan_apart(subscribed, velocity, pose, dt, layer, r_bm_off, bm_nblk, t_off, 
     return k
 
 
-@njit(cache=True)
+@kernel
 def unpin(pinned, reg_dyn, reg_dyncount, free_state, page_free):
     """plan_apart's counts off its regions (pinned, up to a -1); a region left without an
     entry gives its page back, as UnMap does."""

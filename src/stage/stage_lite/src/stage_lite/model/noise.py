@@ -18,12 +18,12 @@ import math
 import numpy as np
 
 from .glibc_random import RAND_MAX, random_next
-from .jit import njit
+from .jit import kernel
 
 TWO_PI = math.pi + math.pi
 
 
-@njit(cache=True)
+@kernel
 def _simple_noise(table, pointers):
     return 2.0 * ((random_next(table, pointers) % 1000) * 0.001 - 0.5)
 
@@ -36,7 +36,7 @@ COOKED = 1.0
 RAW = 2.0
 
 
-@njit(cache=True)
+@kernel
 def _cook(spare):
     """A raw spare made ready, with generateGaussianNoise's own operations."""
     if spare[0] == RAW:
@@ -48,7 +48,7 @@ def _cook(spare):
         spare[0] = COOKED
 
 
-@njit(cache=True)
+@kernel
 def _next(table, f, r):
     """random_next with the stream's pointers as values: (value, front, rear) after the draw."""
     value = (table[f] + table[r]) & 0xFFFFFFFF
@@ -56,7 +56,7 @@ def _next(table, f, r):
     return value >> 1, (f + 1) % 31, (r + 1) % 31
 
 
-@njit(cache=True)
+@kernel
 def _gaussian_at(table, f, r, spare, variance):
     """generateGaussianNoise(variance) with the stream's pointers as values: (noise, front,
     rear). spare = [have one, rand1, rand2]: the pair's second value kept for the next call.
@@ -80,7 +80,7 @@ def _gaussian_at(table, f, r, spare, variance):
     return math.sqrt(variance * spare[1]) * math.cos(spare[2]), f, r
 
 
-@njit(cache=True)
+@kernel
 def _gaussian(table, pointers, spare, variance):
     """generateGaussianNoise, the stream's pointers in memory (_gaussian_at)."""
     noise, f, r = _gaussian_at(table, pointers[0], pointers[1], spare, variance)
@@ -89,7 +89,7 @@ def _gaussian(table, pointers, spare, variance):
     return noise
 
 
-@njit(cache=True)
+@kernel
 def _apply_rows(table, pointers, spare, ranges, offsets, rows, range_max, proportional,
                 constant):
     """The draws of each row's beams (ranges[offsets[i]:offsets[i + 1]]), rows in turn, the

@@ -27,7 +27,7 @@ part from each other).
 """
 import numpy as np
 
-from .jit import njit
+from .jit import kernel, njit
 
 #: a move's cost per block of the robot's body, in beams (the real Stage's ratio, median of
 #: cave, hospital, pioneer_flocking, SFU and fasr: 1.2, 2.2, 2.3, 3.0, 1.9)
@@ -60,7 +60,7 @@ def early_casts(queue_order, queue, cost, robot, move_start):
 # Both clocks as a running sum, each start that sum less its own cost (numpy's cumsum less
 # the cost, as the model was first written: the same floats, so the same casts).
 
-@njit(cache=True)
+@kernel
 def _move_starts(move_order, move_cost, start):
     clock = 0.0
     for k in range(move_order.shape[0]):

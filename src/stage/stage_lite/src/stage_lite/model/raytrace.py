@@ -17,24 +17,24 @@ import math
 import numpy as np
 
 from .grid import REGION, region_index
-from .jit import njit, prange
+from .jit import kernel, njit, prange
 
 NO_SEQ = np.int64(1) << 62   # larger than any drawing's sequence number
 
 
-@njit(cache=True)
+@kernel
 def c_div(a, b):
     """C's integer division of a by b > 0 (truncates toward zero)."""
     return a // b if a >= 0 else -((-a) // b)
 
 
-@njit(cache=True)
+@kernel
 def trunc32(x):
     """C's (int32_t) of a double: toward zero."""
     return np.int64(x) if x >= 0.0 else -np.int64(-x)
 
 
-@njit(cache=True)
+@kernel
 def trace(ox, oy, oz, angle_in, rng, ppm, ray_class, finder_root, layer,
           rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head,
           ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr):
@@ -152,7 +152,7 @@ def trace(ox, oy, oz, angle_in, rng, ppm, ray_class, finder_root, layer,
     return rng, -1
 
 
-@njit(cache=True)
+@kernel
 def sample_angles(start, incr, count, out, at):
     """A sensor's ray angles as ModelRanger::Sensor::Update steps them: each ray's angle is
     rounded to a float (`float savedAngle`), and the next one is that float plus the
@@ -164,13 +164,13 @@ def sample_angles(start, incr, count, out, at):
         a = f + incr
 
 
-@njit(cache=True)
+@kernel
 def _scan_angles(origins, incr, offsets, angles):
     for s in range(origins.shape[0]):
         sample_angles(origins[s, 3], incr[s], offsets[s + 1] - offsets[s], angles, offsets[s])
 
 
-@njit(cache=True)
+@kernel
 def _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
               nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
               ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
@@ -184,7 +184,7 @@ def _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0
     out_model[k] = m
 
 
-@njit(cache=True)
+@kernel
 def cast_scans(origins, incr, offsets, sensor, rmax, ray_class, root, layer, ppm, rx0, ry0,
                nrx, nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
                ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, angles, out_range,

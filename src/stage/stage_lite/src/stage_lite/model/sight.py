@@ -26,13 +26,13 @@ import math
 import numpy as np
 
 from . import grid
-from .jit import njit
+from .jit import kernel
 from .raytrace import trace
 
 NO_Z = None      # the z of a ray cast without the z test
 
 
-@njit(cache=True)
+@kernel
 def cast_fan(ox, oy, oz, angles, rng, finder_root, layer, ppm, rx0, ry0, nrx, nry, reg_count,
              reg_static, reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model,
              blk_zmin, blk_zmax, model_root, model_rr, out_range, out_model):
