@@ -184,3 +184,28 @@ def test_a_charger_along_a_robots_edge_finds_it_in_every_shared_cell(tmp_path):
     assert w.energy.touching(charger) == [robot]
     assert robot.power_pack.stored == pytest.approx(100.0 + 300 * 0.1)
     assert named(w, 'away').power_pack.stored == 100.0
+
+
+def test_a_charger_is_passed_over_only_when_it_touches_nobody(tmp_path):
+    # A robot driving through a static charger, and a charger touching a static taker: each
+    # step, the chargers Energy skips (_quiet_chargers) are those whose touching() is empty;
+    # the one beside the static taker is never skipped, the other is both skipped and not.
+    taker_wall = ('model( name "battery" pose [ -3 2.15 0 0 ] size [ 0.4 0.4 0.3 ] joules 100'
+                  ' joules_capacity 10000 take_watts 100 obstacle_return 0 )\n')
+    wall_charger = ('model( name "dock" pose [ -3 1.8 0 0 ] size [ 0.4 0.3 0.3 ] joules -1'
+                    ' give_watts 200 obstacle_return 0 alwayson 1 )\n')
+    w = world(tmp_path, CHARGER % (-1, 500) + TAKER % ('passer', -0.5, 300) + taker_wall
+              + wall_charger)            # (stageros's: every robot subscribed, so it moves)
+    charger, dock, passer = named(w, 'charger'), named(w, 'dock'), named(w, 'passer')
+    robot = next(i for i, r in enumerate(w.robots) if r.model is passer)
+    skipped = []
+    for _ in range(40):
+        w.set_command(robot, 0.5, 0.0, 0.0)
+        w.step()
+        quiet = w.energy._quiet_chargers()
+        for m in (charger, dock):
+            assert (m in quiet) == (w.energy.touching(m) == [])
+        skipped.append(charger in quiet)
+        assert dock not in quiet
+    assert True in skipped and False in skipped
+    assert passer.power_pack.stored > 100.0

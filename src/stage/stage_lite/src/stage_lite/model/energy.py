@@ -27,8 +27,8 @@ at 0 and nothing else happens: Stage 4.3 stops no model for lack of energy.
 """
 import numpy as np
 
-from .grid import RBITS, REGION
-from .jit import njit
+from .grid import RBITS, REGION, region_index
+from .jit import kernel, njit, unsigned
 
 ENERGY_INTERVAL_US = 100000          # Model::interval_energy, fixed in Stage 4.3
 POSITION_WATTS = 1.0                 # ModelPosition's base draw
@@ -163,6 +163,7 @@ class Energy:
         self._charging = {}           # charger -> the packs it charged at its last update
         self._static_cells = {}       # a static charger or taker -> its cells
         self._static_takers = None
+        self._quiet = None            # the static chargers' cells at once (_quiet_chargers)
 
     # ---- the models' lives (Model::Startup / Shutdown) -------------------------------------
     def has_packs(self):
@@ -193,6 +194,7 @@ class Energy:
         """The set in Stage's order, each model with its pack (packs are made with their
         models, at load: found once)."""
         self._order = [(m, find_power_pack(m)) for m in sorted(self.active, key=self.rank)]
+        self._quiet = None
 
     def position_updated(self, model, velocity):
         """ModelPosition::Update's power draw, from the velocity before its bounds."""
@@ -201,18 +203,20 @@ class Energy:
     # ---- World::Update's last part ---------------------------------------------------------
     def update(self):
         """Model::UpdateCharge of every model of the set, in Stage's order."""
+        quiet = self._quiet_chargers()
         for model, pack in self._order:
             if model.watts > 0:
                 pack.dissipate(model.watts * (ENERGY_INTERVAL_US * 1e-6))
             if model.watts_give > 0:
-                self._give(model, pack)
+                self._give(model, pack, model in quiet)
 
-    def _give(self, model, pack):
-        """A charger's part of UpdateCharge: to every model touching it that takes."""
+    def _give(self, model, pack, quiet=False):
+        """A charger's part of UpdateCharge: to every model touching it that takes (none
+        when it is `quiet`: see _quiet_chargers)."""
         for p in self._charging.pop(model, ()):
             p.charging = False
         charged = []
-        for toucher in self.touching(model):
+        for toucher in () if quiet else self.touching(model):
             his = find_power_pack(toucher)
             if his is not None and toucher.watts_take > 0.0:
                 rate = min(model.watts_give, toucher.watts_take)
@@ -267,6 +271,33 @@ class Energy:
                                      space.ent_block, space.ent_next,
                                      space.blk_model).tolist())
 
+    def _quiet_chargers(self):
+        """The static chargers of the set that touch nothing this step: no moving block
+        drawn in their cells in this step's layer (one kernel for them all: most steps, no
+        robot is at a charger) and no static taker sharing a cell. touching() would find
+        nobody for them."""
+        if self._quiet is None:
+            world = self.world
+            chargers, cells = [], []
+            for m, _ in self._order:
+                if m.watts_give > 0 and world.robot_of(m.root) is None:
+                    xs, ys = self._cells_of(m, 0)
+                    if not any(_share_cell(xs, ys, ox, oy) for ox, oy in self._takers().values()):
+                        chargers.append(m)
+                        cells.append((xs, ys))
+            offsets = np.cumsum([0] + [len(xs) for xs, _ in cells]).astype(np.int64)
+            xs = np.concatenate([c[0] for c in cells] + [np.zeros(0, np.int64)])
+            ys = np.concatenate([c[1] for c in cells] + [np.zeros(0, np.int64)])
+            self._quiet = (chargers, xs.astype(np.int64), ys.astype(np.int64), offsets,
+                           np.zeros(len(chargers), np.bool_))
+        chargers, xs, ys, offsets, busy = self._quiet
+        if not chargers:
+            return ()
+        space = self.world.space
+        _cells_hold_moving(xs, ys, offsets, self.world.updates % 2, space.rx0, space.ry0,
+                           space.nrx, space.nry, space.reg_dyn, space.dyn_head, busy)
+        return {m for m, b in zip(chargers, busy.tolist(), strict=True) if not b}
+
     def _takers(self):
         """The static models that could take a charge (take_watts and a pack), with their
         cells: a charger touching a wall gives it nothing, so only these are looked at."""
@@ -319,3 +350,24 @@ def _dynamic_models(xs, ys, layer, rx0, ry0, nrx, nry, reg_dyn, dyn_head, ent_bl
             n += 1
             e = ent_next[e]
     return out[:n]
+
+
+@kernel
+def _cells_hold_moving(xs, ys, offsets, layer, rx0, ry0, nrx, nry, reg_dyn, dyn_head, out):
+    """out[g]: whether any of the cells (xs, ys)[offsets[g]:offsets[g + 1]] holds a moving
+    block in `layer` (the grid's pages walked as Space's kernels walk them)."""
+    for g in range(offsets.shape[0] - 1):
+        out[g] = False
+        for k in range(offsets[g], offsets[g + 1]):
+            x = xs[k]
+            y = ys[k]
+            reg = region_index(x, y, rx0, ry0, nrx, nry)
+            if reg < 0:
+                continue
+            page = reg_dyn[unsigned(reg)]
+            if page < 0:
+                continue
+            cell = (y & (REGION - 1)) * REGION + (x & (REGION - 1))
+            if dyn_head[unsigned(page), unsigned(layer), unsigned(cell)] >= 0:
+                out[g] = True
+                break
