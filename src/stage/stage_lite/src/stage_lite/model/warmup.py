@@ -135,18 +135,22 @@ def warm_planner():
 
 
 def warm_chargers(world):
-    """A charger's look for the moving blocks it touches (energy.py's kernel), on the cells
-    of the first robot's first block, with the types Energy.touching gives it."""
+    """A charger's look for the moving blocks it touches, and the static chargers' look for
+    any (energy.py's kernels), on the cells of the first robot's first block, with the
+    types Energy.touching and Energy._quiet_chargers give them."""
     import numpy as np
 
-    from .energy import Energy
+    from .energy import Energy, _cells_hold_moving
     space = world.space
     layer = world.updates % 2
     k = world.robots[0].block_ids[0]
     cells = slice(space.rc_start[k], space.rc_start[k] + space.rc_len[layer, k])
-    found = set()
-    Energy._dynamic_in(space, np.ascontiguousarray(space.rc_x[layer, cells]),
-                       np.ascontiguousarray(space.rc_y[layer, cells]), layer, found)
+    xs = np.ascontiguousarray(space.rc_x[layer, cells]).astype(np.int64)
+    ys = np.ascontiguousarray(space.rc_y[layer, cells]).astype(np.int64)
+    Energy._dynamic_in(space, xs, ys, layer, set())
+    _cells_hold_moving(xs, ys, np.array([0, len(xs)], np.int64), layer, space.rx0, space.ry0,
+                       space.nrx, space.nry, space.reg_dyn, space.dyn_head,
+                       np.zeros(1, np.bool_))
 
 
 def warm_sensors(world):
