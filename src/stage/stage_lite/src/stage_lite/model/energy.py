@@ -210,7 +210,7 @@ class Energy:
             if model.watts_give > 0:
                 self._give(model, pack, model in quiet)
 
-    def _give(self, model, pack, quiet=False):
+    def _give(self, model, pack, quiet):
         """A charger's part of UpdateCharge: to every model touching it that takes (none
         when it is `quiet`: see _quiet_chargers)."""
         for p in self._charging.pop(model, ()):
@@ -288,8 +288,7 @@ class Energy:
             offsets = np.cumsum([0] + [len(xs) for xs, _ in cells]).astype(np.int64)
             xs = np.concatenate([c[0] for c in cells] + [np.zeros(0, np.int64)])
             ys = np.concatenate([c[1] for c in cells] + [np.zeros(0, np.int64)])
-            self._quiet = (chargers, xs.astype(np.int64), ys.astype(np.int64), offsets,
-                           np.zeros(len(chargers), np.bool_))
+            self._quiet = (chargers, xs, ys, offsets, np.zeros(len(chargers), np.bool_))
         chargers, xs, ys, offsets, busy = self._quiet
         if not chargers:
             return ()

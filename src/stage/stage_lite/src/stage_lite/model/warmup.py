@@ -145,8 +145,8 @@ def warm_chargers(world):
     layer = world.updates % 2
     k = world.robots[0].block_ids[0]
     cells = slice(space.rc_start[k], space.rc_start[k] + space.rc_len[layer, k])
-    xs = np.ascontiguousarray(space.rc_x[layer, cells]).astype(np.int64)
-    ys = np.ascontiguousarray(space.rc_y[layer, cells]).astype(np.int64)
+    xs = np.ascontiguousarray(space.rc_x[layer, cells])
+    ys = np.ascontiguousarray(space.rc_y[layer, cells])
     Energy._dynamic_in(space, xs, ys, layer, set())
     _cells_hold_moving(xs, ys, np.array([0, len(xs)], np.int64), layer, space.rx0, space.ry0,
                        space.nrx, space.nry, space.reg_dyn, space.dyn_head,
