@@ -15,12 +15,15 @@ import contextlib
 import functools
 import itertools
 import signal
+import socket
 import threading
 import time
 import traceback
 
 import rospy
 import rospy.core
+import rospy.impl.registration
+import rospy.impl.tcpros_base
 import rospy.impl.tcpros_pubsub
 import rospy.names
 from genpy import DeserializationError
@@ -39,6 +42,9 @@ SIGNAL_SHUTDOWN_WAIT_S = 10.0
 #: throttled_topic_checks(): at most one check of every topic's connections this often, s
 #: (rospy's own period when no registration comes in: RegManager.run's cond.wait(0.5))
 TOPIC_CHECK_PERIOD_S = 0.5
+#: deep_tcpros_backlog(): connections the TCPROS server's socket queues before it accepts
+#: them (rospy's is 5; the kernel holds it to net.core.somaxconn)
+TCPROS_BACKLOG = socket.SOMAXCONN
 
 
 def has_subscribers(pub):
@@ -413,6 +419,65 @@ def shut_down_off_the_signal():
     for signum in (signal.SIGINT, signal.SIGTERM):
         if signal.getsignal(signum) is rospy.core._ros_signal:
             signal.signal(signum, handler)
+
+
+def deep_tcpros_backlog():
+    """Let the node's TCPROS server queue as many new connections as the kernel allows.
+
+    Replaces nothing public (rospy has no switch for it): rospy's TCPServer listens with a
+    backlog of 5, and every subscriber of every topic the node publishes connects to that
+    one socket. When more than that arrive at once (stageros with 20 robots, subscribed by
+    two swarm controllers: 40 connections within a second), Linux answers the rest with SYN
+    cookies and then resets some ("Possible SYN flooding on port ..." in the kernel log);
+    rospy takes the reset during the handshake as fatal and never connects that
+    subscription again. The multi-host swarm test lost robots' scans so, about one run in
+    ten. Connections that fit are accepted as before; the backlog is only a queue. Call
+    before rospy.init_node (its /rosout publisher starts the server); once per process.
+    """
+    server_class = rospy.impl.tcpros_base.TCPServer
+    if getattr(server_class._create_server_sock, 'deep_backlog', False):
+        return
+    create = server_class._create_server_sock
+
+    def create_server_sock(self):
+        sock = create(self)
+        sock.listen(TCPROS_BACKLOG)         # a listening socket takes a new backlog
+        return sock
+
+    create_server_sock.deep_backlog = True
+    server_class._create_server_sock = create_server_sock
+
+
+def keep_every_publisher_update():
+    """Make a subscription connect to every publisher the master has named to this node.
+
+    Replaces nothing public (rospy has no switch for it): rospy's registration thread
+    (RegManager.run) keeps, of the publisher lists still waiting for a topic, only the one
+    queued last, taken to be the newest. They can be queued out of order. A subscription's
+    registration (RegManager.reg_added) asks the master for the topic's publishers and
+    queues the answer when the call returns; if a publisher registers in between, the
+    master's publisherUpdate naming it can be queued first, and the older list without it
+    wins: the subscription never connects to that publisher. swarm_controller lost
+    robots' scans so, about one run in ten, when it subscribed while stageros registered
+    its topics (the multi-host swarm test). Here a topic's list is queued merged with the
+    lists still waiting for it, so nothing named is dropped. Connecting is unchanged:
+    rospy's _connect_topic skips publishers already connected, and one that has left
+    refuses or answers that it no longer publishes, as it would to any late subscriber.
+    Call before rospy.init_node; once per process (later calls do nothing).
+    """
+    manager_class = rospy.impl.registration.RegManager
+    if getattr(manager_class.publisher_update, 'keeps_every_update', False):
+        return
+
+    def publisher_update(self, resolved_name, uris):
+        with self.cond:
+            waiting = [uri for topic, listed in self.updates if topic == resolved_name
+                       for uri in listed]
+            self.updates.append((resolved_name, list(dict.fromkeys(waiting + list(uris)))))
+            self.cond.notify_all()
+
+    publisher_update.keeps_every_update = True
+    manager_class.publisher_update = publisher_update
 
 
 def name_mappings():

@@ -6,23 +6,33 @@ import rospy
 
 from course_common.rospy_internals import (
     cache_rosout_param,
+    deep_tcpros_backlog,
+    keep_every_publisher_update,
     shut_down_off_the_signal,
     shutdown_requested,
 )
 
 
 def init_node(name, **kwargs):
-    """rospy.init_node(name, **kwargs), its Ctrl-C made safe, one master call for /rosout's param.
+    """rospy.init_node(name, **kwargs), its Ctrl-C made safe, every subscriber and every
+    publisher the master names connected, one master call for /rosout's param.
 
     rospy's SIGINT/SIGTERM handler shuts the node down inside whatever the signal interrupted,
     which can fail (a "Logging error" traceback at Ctrl-C) or hang; the node's shutdown runs
     in a thread instead (course_common.rospy_internals.shut_down_off_the_signal).
+
+    A rospy node refuses subscribers beyond five connecting at once, and can drop a
+    publisher the master names to a subscription registering at the same time as that
+    publisher; either way that subscription never connects. Here neither happens
+    (course_common.rospy_internals.deep_tcpros_backlog, keep_every_publisher_update).
 
     Without the master call, rospy asks the master for /rosout_disable_topics_generation on
     every log line while that parameter is unset, as under a plain roscore (see
     course_common.rospy_internals.cache_rosout_param). If the master cannot be asked (it
     went away), the node carries on as rospy would, one call per log line.
     """
+    deep_tcpros_backlog()
+    keep_every_publisher_update()
     rospy.init_node(name, **kwargs)
     shut_down_off_the_signal()
     try:

@@ -206,3 +206,95 @@ def test_subscriber_protocol_reads_messages_off_the_buffer():
     protocol = pubsub.TCPROSSub('/pinned', rospy.AnyMsg, queue_size=1)
     pin(callable(getattr(protocol, 'read_messages', None)) and protocol.buff_size > 0,
         'TCPROSSub.read_messages()/buff_size', 'deserialise the buffer / size a recv')
+
+
+# A subscription's registration answer (no publisher yet) queued after the master's newer
+# publisherUpdate naming stageros, as when stageros registers during the registration call;
+# a sentinel topic queued first is connected last, once both /scan lists are dealt with.
+_UPDATES_OUT_OF_ORDER = '''
+import sys, threading
+import rospy.impl.registration as registration
+from course_common import rospy_internals
+
+class Handler:
+    done = False
+    def __init__(self):
+        self.lock, self.connected, self.sentinel = threading.Lock(), [], threading.Event()
+    def _connect_topic(self, topic, uri):
+        with self.lock:
+            self.connected.append((topic, uri))
+        if topic == '/sentinel':
+            self.sentinel.set()
+        return 1, 'connected', 0
+
+if sys.argv[1] == 'keep':
+    rospy_internals.keep_every_publisher_update()
+    rospy_internals.keep_every_publisher_update()   # a second call changes nothing
+handler = Handler()
+manager = registration.RegManager(handler)
+manager.publisher_update('/sentinel', ['http://sentinel:1/'])
+manager.publisher_update('/scan', ['http://stage:2/', 'http://other:3/'])  # publisherUpdate
+manager.publisher_update('/scan', ['http://other:3/'])     # registerSubscriber's answer
+loop = threading.Thread(target=manager.run, daemon=True)
+loop.start()
+assert handler.sentinel.wait(30), 'the registration loop connected nothing'
+handler.done = True
+for thread in threading.enumerate():
+    if thread is not threading.current_thread():
+        thread.join(30)
+print(sorted(uri for topic, uri in handler.connected if topic == '/scan'))
+'''
+
+
+def test_a_publisher_named_out_of_order_is_still_connected():
+    assert _run(_UPDATES_OUT_OF_ORDER, 'keep') == "['http://other:3/', 'http://stage:2/']"
+
+
+def test_plain_rospy_drops_a_publisher_named_out_of_order():
+    # the race keep_every_publisher_update() closes; if rospy fixes it, this says so
+    pin(_run(_UPDATES_OUT_OF_ORDER, 'plain') == "['http://other:3/']",
+        'RegManager.run', 'keeps only the publisher list queued last for a topic')
+
+
+# CLIENTS connections to a TCPROS server socket that accepts none yet, then every one it
+# queued accepted. A connect() on loopback returns at once when the kernel queues it; once
+# the queue is full the kernel drops the SYN, and the connects stop at the first that is
+# still waiting after 1 s (a plain rospy server).
+_QUEUED_CONNECTIONS = '''
+import os, socket, sys
+os.environ['ROS_HOSTNAME'] = 'localhost'
+import rospy.impl.tcpros_base as tcpros_base
+from course_common import rospy_internals
+CLIENTS = 40
+if sys.argv[1] == 'deep':
+    rospy_internals.deep_tcpros_backlog()
+    rospy_internals.deep_tcpros_backlog()   # a second call changes nothing
+server = tcpros_base.TCPServer(lambda sock, addr: None)
+clients = []
+try:
+    for _ in range(CLIENTS):
+        clients.append(socket.create_connection(('127.0.0.1', server.port),
+                                                timeout=10 if sys.argv[1] == 'deep' else 1))
+except TimeoutError:
+    pass
+server.server_sock.setblocking(False)
+queued = 0
+while True:
+    try:
+        server.server_sock.accept()[0].close()
+    except BlockingIOError:
+        break
+    queued += 1
+print(queued)
+'''
+
+
+def test_the_tcpros_server_queues_many_connections_at_once():
+    assert _run(_QUEUED_CONNECTIONS, 'deep') == '40'
+
+
+def test_plain_rospy_queues_few_connections():
+    # what deep_tcpros_backlog() changes; if rospy listens deeper one day, this says so
+    queued = int(_run(_QUEUED_CONNECTIONS, 'plain'))
+    pin(queued < 40, 'rospy.impl.tcpros_base.TCPServer',
+        'listens with a small backlog (%d of 40 connections queued)' % queued)

@@ -4,6 +4,7 @@ rospy asks the master for /rosout_disable_topics_generation on every log line wh
 parameter is unset (a plain roscore). The first test runs a logging node against a master
 in this process that records every call (no roscore) and fails if the node asks again per
 line; the second pins that plain rospy still does (if it stops, startup's seeding can go);
+one checks that init_node makes rospy connect every subscription (rospy_internals tests how);
 the last fails if a node of the workspace starts without course_common.startup.init_node.
 """
 import os
@@ -70,6 +71,25 @@ def test_plain_rospy_still_asks_per_log_line(master):
     assert len(calls) >= LINES, ('rospy asked the master %d times for %d log lines: it caches '
                                  '/rosout_disable_topics_generation now, so '
                                  'startup.cache_rosout_param may go' % (len(calls), LINES))
+
+
+CONNECTS_ALL = '''
+import rospy.impl.registration as registration
+import rospy.impl.tcpros_base as tcpros_base
+from course_common.startup import init_node
+init_node('connect_probe')
+print(getattr(tcpros_base.TCPServer._create_server_sock, 'deep_backlog', False),
+      getattr(registration.RegManager.publisher_update, 'keeps_every_update', False))
+'''
+
+
+def test_startup_connects_every_subscriber_and_publisher(master):
+    # rospy_internals.deep_tcpros_backlog and keep_every_publisher_update, tested there,
+    # installed by init_node
+    done = subprocess.run([sys.executable, '-c', CONNECTS_ALL], capture_output=True,
+                          text=True, timeout=RUN_TIMEOUT_S, env=probe_env(master), check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == 'True True', done.stdout
 
 
 def _node_sources():
