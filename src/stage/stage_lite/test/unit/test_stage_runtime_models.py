@@ -326,3 +326,29 @@ def test_acceleration_control_moves_robots_as_the_real_stage():
         assert [int(r.stalled) for r in world.robots] == real['stall'][0, k].tolist(), k
     assert real['stall'][0, -1].tolist() == [1, 0, 0]
     assert world.robots[0].velocity[0] == 1.0 and world.robots[1].velocity[:2] == (0.5, 0.5)
+
+
+def test_a_fiducial_finder_sees_a_static_model_where_it_was_moved(tmp_path):
+    # the finders' sets and readings take a static model's pose from a cache that a move
+    # must clear (World.global_poses); a robot beside it keeps the sets mixed
+    path = tmp_path / 'beacon.world'
+    path.write_text('resolution 0.02\n'
+                    'position( name "me" size [ 0.4 0.4 0.25 ] fiducial( range_max 8 ) )\n'
+                    'position( name "mate" pose [ 0 -2 0 0 ] size [ 0.4 0.4 0.25 ]'
+                    ' fiducial_return 2 )\n'
+                    'model( name "beacon" pose [ 2 0 0 0 ] size [ 0.2 0.2 0.5 ]'
+                    ' fiducial_return 1 )\n')
+    world = load_world(str(path), stageros=False)
+    finder = world.handle(model_named(world, 'me.fiducial:0'))
+    finder.subscribe()
+
+    def ranges():
+        world.step()
+        return {seen.id: seen.range for seen in finder.fiducials}
+    before = ranges()
+    assert before[1] == pytest.approx(2.0, abs=1e-9)
+    assert before[2] == pytest.approx(2.0, abs=1e-9)
+    world.handle(model_named(world, 'beacon')).set_pose((2.4, 1.8, 0.0, 0.0))
+    after = ranges()
+    assert after[1] == pytest.approx(3.0, abs=1e-9)
+    assert after[2] == pytest.approx(2.0, abs=1e-9)

@@ -205,8 +205,17 @@ class Energy:
         """Model::UpdateCharge of every model of the set, in Stage's order."""
         quiet = self._quiet_chargers()
         for model, pack in self._order:
-            if model.watts > 0:
-                pack.dissipate(model.watts * (ENERGY_INTERVAL_US * 1e-6))
+            watts = model.watts
+            if watts > 0:           # pack.dissipate(joules), inlined: some 40 a step in fasr
+                joules = watts * (ENERGY_INTERVAL_US * 1e-6)
+                stored = pack.stored
+                if stored < 0:
+                    pack.supplied += joules
+                    pack.dissipated += joules
+                else:
+                    amount = min(stored, joules)
+                    pack.stored = stored - amount
+                    pack.dissipated += amount
             if model.watts_give > 0:
                 self._give(model, pack, model in quiet)
 

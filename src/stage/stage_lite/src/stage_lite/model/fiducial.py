@@ -105,6 +105,7 @@ class FiducialIndex:
             self.set_return(m, m.fiducial_return)
         self._members = []
         self._order_x = self._order_y = np.zeros(0, np.int64)
+        self._sorted_for = None     # (the members' constants, their poses) last sorted
         self.begin_step()
 
     def set_return(self, model, value):
@@ -126,8 +127,13 @@ class FiducialIndex:
         """World::Update's first work: the sets sorted by global x and by global y (ties by
         address: rank) rebuilt from the fiducial-bearing models' poses now."""
         members = self._members = list(self.models)
-        _, at, self._ranks, _, _ = self.constants(members)
+        constants = self.constants(members)
+        _, at, self._ranks, _, _ = constants
         poses = self.poses(members, at=at)
+        last = self._sorted_for
+        if last is not None and last[0] is constants and np.array_equal(last[1], poses):
+            return                  # the same models where they were: the same orders
+        self._sorted_for = (constants, poses)
         # stable sorts: equal (x, rank) keep the models' order, as sorted() does
         self._order_x = np.lexsort((self._ranks, poses[:, 0]))
         self._order_y = np.lexsort((self._ranks, poses[:, 1]))
@@ -257,6 +263,9 @@ class Fiducial(models.Fiducial):
             members, poses, (out_c, out_f, out_id) = step.members, step.poses, step.out
             at, count = i * len(members), int(step.count[i])
             self._seen = None
+            if not count:                   # most updates see nothing
+                self._fiducials = []
+                return self._fiducials
             end = at + count
             self._fiducials = [
                 _reading(members[c], poses[c].tolist(), rng, bearing, geom_a, fid)

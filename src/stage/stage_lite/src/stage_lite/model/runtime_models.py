@@ -179,6 +179,7 @@ def _redraw(world, model):
         world._trees_changed = True
     else:
         world._statics_changed = True
+        world._static_poses.clear()       # World.global_poses's, of static models
 
 
 def _moves(world, model):

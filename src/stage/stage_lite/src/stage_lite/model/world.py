@@ -41,7 +41,7 @@ from .blobfinder import Blobfinder
 from .camera import CameraRig
 from .casts import RangerCasts
 from .energy import Energy
-from .fiducial import Fiducial, FiducialIndex, python_poses
+from .fiducial import Fiducial, FiducialIndex
 from .finders import update_all
 from .glibc_random import Rand48, Random
 from .motion import Chains, Motion, elements
@@ -137,6 +137,10 @@ class World(RangerCasts, RobotByRobot):
         self._any_blobfinder = bool(self._kind[Blobfinder].any())
         self._masks_version = None
         self._model_chains = None        # every model's chain, made when first needed
+        # (model index, body) -> a static model's global pose, and (the indices' bytes,
+        # body) -> those of a set of static models (global_poses), forgotten whenever a
+        # static model is moved or resized (runtime_models._redraw)
+        self._static_poses = {}
         # what models made, moved or recoloured at run time leave for the next step
         # (runtime_models): a static model's drawing, a robot's tree
         self._statics_changed = False
@@ -195,11 +199,18 @@ class World(RangerCasts, RobotByRobot):
     def global_poses(self, models, body=False, at=None):
         """Model.global_pose (body_pose with body) of each model, an (n, 4) array: carried
         from the robots' poses by motion.Chains' kernel for the models of robot trees (at:
-        their indices, if the caller has them)."""
+        their indices, if the caller has them), by Model.global_pose for static ones."""
         if at is None:
             at = np.fromiter((m.index for m in models), np.int64, len(models))
-        if (self._robot_slot[self._root_of[at]] < 0).any():     # a static model among them
-            return python_poses(models, body)
+        key = (at.tobytes(), body)
+        rows = self._static_poses.get(key)
+        if rows is not None:                # static models only (the finders' sets)
+            return rows.copy()
+        static = np.flatnonzero(self._robot_slot[self._root_of[at]] < 0)
+        if len(static) == len(models):
+            rows = self._static_poses[key] = self._static_pose_rows(
+                models, range(len(models)), body)
+            return rows.copy()
         if self._model_chains is None:
             n = len(self.models)
             slots = [max(0, self._robot_slot[m.root.index]) for m in self.models]
@@ -212,7 +223,21 @@ class World(RangerCasts, RobotByRobot):
         if body:
             at = at + self._model_chains.count
         self._model_chains.poses(at, self.state.pose, out)
+        if len(static):                     # their chains start at robot 0: rows replaced
+            out[static] = self._static_pose_rows(models, static.tolist(), body)
         return out
+
+    def _static_pose_rows(self, models, which, body):
+        """python_poses of models[k] for k in which, static models: from the cache."""
+        cache = self._static_poses
+        rows = []
+        for k in which:
+            m = models[k]
+            pose = cache.get((m.index, body))
+            if pose is None:
+                pose = cache[m.index, body] = m.body_pose() if body else m.global_pose()
+            rows.append(pose)
+        return np.array(rows, np.float64).reshape(-1, 4)
 
     def robot_of(self, model):
         """The Robot of a position model (None for other models)."""
