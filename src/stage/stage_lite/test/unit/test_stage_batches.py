@@ -1,13 +1,14 @@
 """The step's kernels and batches do what the world's one-by-one code does, to the last bit:
 every robot's update and move (motion.py) against World._step_each (power packs too), the
 fiducial finders' kernel against Fiducial.update_one_by_one, and the controllers' batches
-(expand_swarm, pioneer_flocking, fasr2) against their callbacks called one by one."""
+(expand_swarm, pioneer_flocking, fasr2, fasr) against their callbacks called one by one."""
 import os
 
 import numpy as np
 import pytest
 from stage_lite.controllers import _fasr2_batch as fasr2_batch
-from stage_lite.controllers import fasr2
+from stage_lite.controllers import _fasr_batch as fasr_batch
+from stage_lite.controllers import fasr, fasr2
 from stage_lite.model import fiducial as fiducial_module
 from stage_lite.model import finders as finders_module
 from stage_lite.model import world as world_module
@@ -179,6 +180,43 @@ def test_fasr2s_kernel_does_most_updates_and_leaves_the_rest_to_python(monkeypat
     for _ in range(1500):
         w.step()
     assert calls['kernel'] > 2 * calls['python'] > 0
+
+
+def foragers_state(w):
+    """What fasr's robots keep in Python (the batch reads and writes some of it)."""
+    robots = [cb.function.__self__ for (m, kind), entries in w.scheduler.callbacks.items()
+              for cb, _, _ in entries if isinstance(getattr(cb.function, '__self__', None),
+                                                     fasr.Forager)]
+    return [(r.pos.token, r.mode, r.avoid_count, r.charger_ahoy, r.charger_range,
+             r.work_get, r.work_put, r.pos.get_flag_count()) for r in robots]
+
+
+def test_fasrs_batch_is_its_laser_updates_one_by_one(monkeypatch):
+    # fasr's three robots on the small room (one docks, charges and undocks, one fetches a
+    # flag, one delivers it): the kernel's case most often, Python's too, and avoids drawn
+    calls = {'kernel': 0, 'python': 0}
+    run = fasr_batch.FasrBatch.run
+
+    def counted_run(self, plan, rows):
+        done = run(self, plan, rows)
+        calls['kernel'] += done
+        calls['python'] += int(done < rows.size)
+        return done
+    monkeypatch.setattr(fasr_batch.FasrBatch, 'run', counted_run)
+    path = os.path.join(os.path.dirname(__file__), '..', 'worlds', 'fasr_small.world')
+    batched = load_world(path, seed=7, stageros=False)
+    alone = load_world(path, seed=7, stageros=False)
+    alone.batches = False
+    avoided = set()
+    for step in range(600):
+        batched.step()
+        alone.step()
+        assert_same(snapshot(batched), snapshot(alone), step)
+        state = foragers_state(batched)
+        assert state == foragers_state(alone), step
+        avoided.update(token for token, _, count, *_ in state if count > 0)
+    assert calls['kernel'] > 2 * calls['python'] > 0
+    assert avoided
 
 
 @pytest.mark.parametrize('robots', [12, 34])     # 34 * 34 pairs: the threads' kernel

@@ -1,7 +1,9 @@
 """Stage's fasr (controllers/fasr.py): its tables, its beam rule, picking up and delivering
 flags, and a hungry robot docking at a charger, charging, undocking and going back to work,
-on a small world of this test's own (a room, a source, a sink, a charger, three robots)."""
+on a small world of the tests' own (worlds/fasr_small.world: a room, a source, a sink, a
+charger, three robots)."""
 import math
+import os
 
 import numpy as np
 import pytest
@@ -9,35 +11,13 @@ from stage_lite.controllers import fasr
 from stage_lite.model.stage_api import Flag
 from stage_lite.model.world import load_world
 
-WORLD = '''resolution 0.02
-interval_sim 100
-define laser ranger ( sensor( range [ 0 3 ] fov 180 samples 32 ) )
-define sonar ranger ( sensor( range [ 0 5 ] fov 15 samples 1 ) )
-define bump model ( pose [ 0.24 0 -0.1 0 ] size [ 0.12 0.05 0.1 ] take_watts 2000
-                    obstacle_return 0 )
-define forager position ( size [ 0.44 0.38 0.22 ] mass 23
-  sonar( ) laser( pose [ 0 0 -0.1 0 ] ) bump( fiducial( range_max 5 pose [ 0 0 -0.1 0 ] ) )
-  ctrl "fasr" )
-define charger model ( size [ 0.1 0.3 0.1 ] color "purple"
-  model( pose [ 0.01 0 0 0 ] size [ 0.05 0.2 0.1 ] joules -1 give_watts 2000
-         fiducial_return 2 alwayson 1 ) )
-model( name "room" size [ 16 16 0.5 ] boundary 1 noblocks 1 )
-model( name "source" pose [ -7 -7 0 0 ] size [ 2 2 0.01 ] obstacle_return 0
-       ranger_return -1 ctrl "source 1" )
-model( name "sink" pose [ 7 7 0 0 ] size [ 2 2 0.01 ] obstacle_return 0 ranger_return -1
-       ctrl "sink" )
-charger( pose [ 2 0 0 0 ] )
-forager( name "hungry" pose [ 0.8 0 0 0 ] joules 2000 joules_capacity 10000 )
-forager( name "getter" pose [ -7 -7 0 0 ] kjoules 100 )
-forager( name "putter" pose [ 7 7 0 0 ] kjoules 100 )
-'''
+WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'worlds',
+                     'fasr_small.world')
 
 
 @pytest.fixture
-def world(tmp_path):
-    path = tmp_path / 'fasr.world'
-    path.write_text(WORLD)
-    return load_world(str(path), stageros=False)
+def world():
+    return load_world(WORLD, stageros=False)
 
 
 def named(w, name):

@@ -21,6 +21,8 @@ Rule for rule as Stage's:
 - at each finder update: the first reading with id 2 is the charger (range, bearing, his
   heading); none: no charger in sight.
 The cell of a pose is ((x + 8) / 4, (y + 8) / 4), truncated toward zero, held to 0..3.
+A working robot's laser update that is not hungry runs in one kernel with the others'
+(_fasr_batch.py), the same to the bit.
 """
 import math
 
@@ -28,6 +30,7 @@ from stage_lite.model.stage_api import normalize
 
 from ._avoid import AVOID_PART, avoid_step, beam_rule
 from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
+from ._fasr_batch import FasrBatch
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -46,6 +49,9 @@ HUNGRY = 0.25             # of the pack's capacity
 FULL = 0.95
 UNDOCK_DISTANCE = 0.3     # m
 UNDOCK_SPEED = -0.05      # m/s
+CELL_ORIGIN = 8           # m: the tables' cells count from (-8, -8)
+CELL_SIZE = 4             # m
+CELLS = 4                 # a side
 
 # Headings (degrees) per grid cell [y][x] of the 16 m x 16 m cave, x and y from -8 m in 4 m
 # cells: carrying a flag, looking for one, looking for a charger.
@@ -73,7 +79,8 @@ def init(model, args):
 
 def cell(x, y):
     """The table cell (column, row) of a pose: Stage's int((v + 8) / 4), held to 0..3."""
-    return (min(max(int((x + 8) / 4), 0), 3), min(max(int((y + 8) / 4), 0), 3))
+    return (min(max(int((x + CELL_ORIGIN) / CELL_SIZE), 0), CELLS - 1),
+            min(max(int((y + CELL_ORIGIN) / CELL_SIZE), 0), CELLS - 1))
 
 
 def heading_goal(x, y, carrying, hungry):
@@ -191,3 +198,10 @@ class Forager:
                 self.charger_heading = seen.geom[3]
                 break
         return False
+
+
+# the working robots' laser updates in one kernel (_fasr_batch.py), the rest as above
+Forager.laser_update.batch = FasrBatch(dict(
+    work=MODE_WORK, front=MIN_FRONT_DISTANCE, stop=STOP_DISTANCE, avoid_speed=AVOID_SPEED,
+    avoid_turn=AVOID_TURN, avoid_duration=AVOID_DURATION, cruise=CRUISE_SPEED, need=NEED,
+    have=HAVE, cell_origin=CELL_ORIGIN, cell_size=CELL_SIZE, cells=CELLS))

@@ -11,7 +11,8 @@ expand_swarm and pioneer_flocking on two others (their batches' kernels) calls e
 with the argument types stageros uses (test_stage_warmup.py checks that none is left out);
 a second world, whose robot stands on another model, the kernels a World moving its robots
 one by one calls; a third, two robots far apart, the kernels that move robots two at a
-time; fasr2's planner and its batch's kernel are called on their own.
+time; fasr2's planner and its batch's kernel, and fasr's batch's kernel, are called on their
+own.
 """
 import glob
 import hashlib
@@ -87,6 +88,7 @@ def warm():
             f.write(APART)
         warm_moves_apart(load_world(path))
     warm_planner()
+    warm_fasr()
     warm_race()
 
 
@@ -132,6 +134,19 @@ def warm_planner():
               ints, np.array([4]), np.zeros((1, 4)), ints, np.zeros((1, 4)), ints.copy(),
               np.arange(31, dtype=np.int64), np.array([3, 0]), 0.7, 0.5, 0.05, 0.5, 10, 0.4,
               0.5, 5.0, 0.25)
+
+
+def warm_fasr():
+    """fasr's batch's kernel, with the types FasrBatch.run gives it (one robot that starts
+    an avoid)."""
+    import numpy as np
+
+    from stage_lite.controllers._fasr_batch import _work_all
+    ints = np.zeros(1, np.int64)
+    _work_all(ints, np.ones(1, np.bool_), ints.copy(), ints, np.zeros((2, 4, 4)),
+              np.zeros(4), ints, np.array([4]), np.zeros((1, 4)), ints, np.zeros((1, 4)),
+              ints.copy(), np.arange(31, dtype=np.int64), np.array([3, 0]), 0.7, 0.5, 0.05,
+              0.5, 10, 0.4, 8, 4, 4)
 
 
 def warm_chargers(world):

@@ -362,25 +362,30 @@ class World(RangerCasts, RobotByRobot):
         of models of one batch together."""
         scheduler = self.scheduler
         models = self.models
-        at = np.flatnonzero(with_callbacks[every])
-        bids = self._batch_id[every[at]]
+        # Python lists: a step calls a few callbacks, and numpy's calls on a few numbers
+        # cost more than the loop
+        order = every.tolist()
+        at = np.flatnonzero(with_callbacks[every]).tolist()
+        bids = self._batch_id[every[at]].tolist()
         j = 0
-        while j < at.size:
-            p = int(at[j])
-            b = int(bids[j])
+        while j < len(at):
+            p = at[j]
+            b = bids[j]
             if b:
-                k = j + int(np.argmax(bids[j:] != b)) if (bids[j:] != b).any() else at.size
+                k = j + 1
+                while k < len(at) and bids[k] == b:
+                    k += 1
                 done = self._run_batch(b, self._batch_row[every[at[j:k]]])
                 j += done
                 if done:
                     continue
             version = scheduler.version
-            scheduler.call(models[int(every[p])], CB_UPDATE)
+            scheduler.call(models[order[p]], CB_UPDATE)
             j += 1
             if scheduler.version != version:      # callbacks changed: look again
                 _, with_callbacks = self._masks()
-                at = np.concatenate((at[:j], p + 1 + np.flatnonzero(with_callbacks[every[p + 1:]])))
-                bids = self._batch_id[every[at]]
+                at = at[:j] + (p + 1 + np.flatnonzero(with_callbacks[every[p + 1:]])).tolist()
+                bids = self._batch_id[every[at]].tolist()
 
     def _run_batch(self, b, rows):
         """Batch b's callbacks of the rows `rows` (its plan's), in turn: how many were

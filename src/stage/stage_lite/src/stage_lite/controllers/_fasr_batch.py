@@ -1,0 +1,136 @@
+"""fasr's laser updates, robot after robot, in one kernel (scheduler.py's batch protocol).
+
+Most of fasr's laser updates are one case: a working robot that is not hungry. It either
+avoids (a new avoid drawing its count from random()'s stream, glibc_random.random_next) or
+cruises and turns to the heading its cell's table gives (HAVE carrying a flag, NEED
+without). The kernel does exactly that case, rule for rule as fasr.py (the same comparisons
+and truncations, Stage's normalize, the tables' headings converted by math.radians), and
+stops at the first robot in any other case (docking, undocking, hungry, a pose or a turn
+that is not finite): that robot's update runs in Python, and the kernel goes on after it.
+
+What the kernel reads of each robot's Python state (mode, avoid count, hunger, whether it
+carries a flag) is gathered at the step's first batch run: the position updates, which move
+the flags, come before every laser update (queue 0's callbacks first), the packs drain after
+the callbacks, and a laser update changes only its own robot's mode and avoid count.
+"""
+import math
+
+import numpy as np
+
+from stage_lite.model.glibc_random import random_next
+from stage_lite.model.jit import kernel
+from stage_lite.model.motion import normalize
+from stage_lite.model.robot_state import MODE_CODE
+
+from ._avoid import AVOID_PART, _beam_rule
+
+VELOCITY = MODE_CODE['velocity']
+
+
+class FasrBatch:
+    """fasr's Forager.laser_update in turn, in one kernel where the case allows (see the
+    module)."""
+
+    def __init__(self, rules):
+        self.rules = rules          # fasr's constants, as a dict (fasr.py gives them)
+
+    def prepare(self, entries):
+        """The robots' fixed tables, or None when they do not share the world's arrays."""
+        robots = [callback.function.__self__ for callback, _, _ in entries]
+        n = len(robots)
+        plan = dict(robots=robots, step=None, first=np.zeros(n, np.int64),
+                    samples=np.zeros(n, np.int64), row=np.zeros(n, np.int64))
+        arrays = None
+        for i, r in enumerate(robots):
+            sensor = r.laser.sensors[0]
+            place = sensor.first_range_at()
+            goal, mode, row = r.pos.command_rows()
+            pose, pose_row = r.pos.pose_rows()
+            if place is None or pose_row != row:
+                return None
+            here = (place[0], goal, mode, pose)
+            arrays = arrays or here
+            if any(a is not b for a, b in zip(here, arrays, strict=True)):
+                return None
+            plan['first'][i] = place[1]
+            plan['samples'][i] = len(sensor.ranges)
+            plan['row'][i] = row
+        plan['beams'], plan['goal'], plan['mode'], plan['pose'] = arrays
+        plan['world'] = robots[0].pos.world
+        plan['random'] = plan['world'].random_stream()
+        rules = self.rules
+        # [carrying][row][column], in radians as heading_goal converts them
+        plan['headings'] = np.array([[[math.radians(d) for d in line] for line in table]
+                                     for table in (rules['need'], rules['have'])],
+                                    np.float64)
+        return plan
+
+    def run(self, plan, rows):
+        robots = plan['robots']
+        now = plan['world'].sim_time_now()
+        if plan['step'] != now:
+            self._gather(plan)
+            plan['step'] = now
+        state = plan['state']
+        rules = self.rules
+        stream = plan['random']
+        done = _work_all(rows, state['simple'], state['avoid'], state['carrying'],
+                         plan['headings'], plan['beams'], plan['first'], plan['samples'],
+                         plan['pose'], plan['row'], plan['goal'], plan['mode'], stream.table,
+                         stream.pointers, rules['front'], rules['stop'],
+                         rules['avoid_speed'], rules['avoid_turn'], rules['avoid_duration'],
+                         rules['cruise'], rules['cell_origin'], rules['cell_size'],
+                         rules['cells'])
+        avoid = state['avoid']
+        for i in rows[:done].tolist():      # a run is a few robots: no numpy for them
+            robots[i].avoid_count = int(avoid[i])
+        return done
+
+    def _gather(self, plan):
+        """This step's state of every robot, as the kernel reads it."""
+        work = self.rules['work']
+        simple, avoid, carrying = [], [], []
+        for r in plan['robots']:
+            simple.append(r.mode == work and not r.hungry())
+            avoid.append(r.avoid_count)
+            carrying.append(r.pos.get_flag_count() > 0)
+        plan['state'] = dict(simple=np.array(simple, np.bool_),
+                             avoid=np.array(avoid, np.int64),
+                             carrying=np.array(carrying, np.int64))
+
+
+@kernel
+def _work_all(rows, simple, avoid, carrying, headings, beams, first, samples, pose, row,
+              command, mode, table, pointers, front, stop, avoid_speed, avoid_turn,
+              avoid_duration, cruise, cell_origin, cell_size, cells):
+    """fasr's laser update of the robots `rows` in turn while each is the simple case;
+    returns how many were done (the next is called on its own)."""
+    for j in range(rows.shape[0]):
+        i = rows[j]
+        if not simple[i]:
+            return j
+        p = row[i]
+        scan = beams[first[i]:first[i] + samples[i]]
+        obstruction, too_close, min_left, min_right = _beam_rule(scan, AVOID_PART, front,
+                                                                 stop)
+        if obstruction or too_close or avoid[i] > 0:  # avoid_step
+            command[p, 0] = 0.0 if too_close else avoid_speed
+            mode[p] = VELOCITY
+            if avoid[i] < 1:                          # a new avoid: its count drawn
+                avoid[i] = random_next(table, pointers) % avoid_duration + avoid_duration
+                command[p, 3] = -avoid_turn if min_left < min_right else avoid_turn
+            avoid[i] -= 1
+            continue
+        x = pose[p, 0]
+        y = pose[p, 1]
+        if not (math.isfinite(x) and math.isfinite(y)):
+            return j                                  # Python's int() refuses it
+        column = min(max(int((x + cell_origin) / cell_size), 0), cells - 1)
+        line = min(max(int((y + cell_origin) / cell_size), 0), cells - 1)
+        turn = normalize(headings[carrying[i], line, column] - pose[p, 3])
+        if not math.isfinite(turn):                   # set_turn_speed refuses it
+            return j
+        command[p, 0] = cruise
+        command[p, 3] = turn
+        mode[p] = VELOCITY
+    return rows.shape[0]
