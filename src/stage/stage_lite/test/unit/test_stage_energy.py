@@ -108,6 +108,17 @@ def test_an_empty_pack_stops_nothing(tmp_path):
     assert r.pose[0] == pytest.approx(-2.0 + 10 * 0.05)
 
 
+def test_an_infinite_supply_gives_what_a_robot_draws_and_keeps_its_store(tmp_path):
+    w = world(tmp_path, 'position( name "r" pose [ -2 0 0 0 ] mass 10 joules -1 )\n')
+    w.set_command(0, 0.5, 0.0, 0.0)
+    for _ in range(4):
+        w.step()
+    pack = named(w, 'r').power_pack
+    drawn = 4 * position_watts(10, (0.5, 0, 0, 0)) * 0.1
+    assert pack.stored == -1.0
+    assert pack.supplied == pytest.approx(drawn) and pack.dissipated == pytest.approx(drawn)
+
+
 def test_nothing_draws_until_it_is_started(tmp_path):
     w = world(tmp_path, 'position( name "r" pose [ -2 0 0 0 ] mass 10 joules 50 watts 3 )\n',
               stageros=False)
@@ -198,10 +209,11 @@ def test_a_charger_is_passed_over_only_when_it_touches_nobody(tmp_path):
               + wall_charger)            # (stageros's: every robot subscribed, so it moves)
     charger, dock, passer = named(w, 'charger'), named(w, 'dock'), named(w, 'passer')
     robot = next(i for i, r in enumerate(w.robots) if r.model is passer)
-    skipped = []
+    skipped, charging = [], []
     for _ in range(40):
         w.set_command(robot, 0.5, 0.0, 0.0)
         w.step()
+        charging.append(passer.power_pack.charging)
         quiet = w.energy._quiet_chargers()
         for m in (charger, dock):
             assert (m in quiet) == (w.energy.touching(m) == [])
@@ -209,3 +221,6 @@ def test_a_charger_is_passed_over_only_when_it_touches_nobody(tmp_path):
         assert dock not in quiet
     assert True in skipped and False in skipped
     assert passer.power_pack.stored > 100.0
+    # charged while it touched the charger, and no longer once it has driven past it (the
+    # quiet charger still clears what it charged)
+    assert True in charging and not charging[-1]

@@ -25,6 +25,8 @@ with a block in a cell the charger's own blocks are drawn into, in the layer thi
 drew (no height test; models of the charger's own tree are not counted). An empty pack stays
 at 0 and nothing else happens: Stage 4.3 stops no model for lack of energy.
 """
+from operator import attrgetter
+
 import numpy as np
 
 from .grid import RBITS, REGION, region_index
@@ -38,18 +40,53 @@ BLOBFINDER_WATTS = 2.0
 BUMPER_WATTS = 0.1
 #: what each kind draws while started (Startup's SetWatts; Shutdown sets 0)
 STARTED_WATTS = {'blobfinder': BLOBFINDER_WATTS, 'bumper': BUMPER_WATTS}
+#: a power pack's columns in its table
+STORED, CAPACITY, DISSIPATED, SUPPLIED = range(4)
+
+
+def _column(k, doc):
+    """A PowerPack's number held in column k of its table's row."""
+    def get(self):
+        return float(self._values[self._row, k])
+
+    def put(self, value):
+        self._values[self._row, k] = value
+    return property(get, put, doc=doc)
 
 
 class PowerPack:
     """Stage's PowerPack: joules stored (negative: an infinite supply), capacity, whether it
-    is being charged, and what it has dissipated; `supplied`, what an infinite supply gave."""
+    is being charged, and what it has dissipated; `supplied`, what an infinite supply gave.
+
+    Its numbers live in a row of a table (its own, until the world's energy set takes it
+    into the set's table: Energy._adopt), so that a step's dissipations are one kernel's."""
+
+    __slots__ = ('_values', '_charging', '_row')
 
     def __init__(self, stored=0.0, capacity=0.0):
-        self.stored = float(stored)
-        self.capacity = float(capacity)
-        self.charging = False
-        self.dissipated = 0.0
-        self.supplied = 0.0
+        self._values = np.array([[float(stored), float(capacity), 0.0, 0.0]], np.float64)
+        self._charging = np.zeros(1, np.bool_)
+        self._row = 0
+
+    stored = _column(STORED, 'joules stored (negative: an infinite supply)')
+    capacity = _column(CAPACITY, 'joules it holds at most')
+    dissipated = _column(DISSIPATED, 'joules lost as work or heat')
+    supplied = _column(SUPPLIED, 'joules an infinite supply gave')
+
+    @property
+    def charging(self):
+        return bool(self._charging[self._row])
+
+    @charging.setter
+    def charging(self, value):
+        self._charging[self._row] = value
+
+    def move_to(self, values, charging, row):
+        """Its numbers copied into row `row` of the tables values and charging, and kept
+        there from now on."""
+        values[row] = self._values[self._row]
+        charging[row] = self._charging[self._row]
+        self._values, self._charging, self._row = values, charging, row
 
     def __repr__(self):
         return 'PowerPack(%.2f / %.2f J)' % (self.stored, self.capacity)
@@ -164,6 +201,9 @@ class Energy:
         self._static_cells = {}       # a static charger or taker -> its cells
         self._static_takers = None
         self._quiet = None            # the static chargers' cells at once (_quiet_chargers)
+        # the set's packs in one table, each model's row and which are chargers, made at the
+        # first update after the set changed (_adopt)
+        self._table = None
 
     # ---- the models' lives (Model::Startup / Shutdown) -------------------------------------
     def has_packs(self):
@@ -195,6 +235,23 @@ class Energy:
         models, at load: found once)."""
         self._order = [(m, find_power_pack(m)) for m in sorted(self.active, key=self.rank)]
         self._quiet = None
+        self._table = None
+
+    def _adopt(self):
+        """The set's packs moved into one table (each once, in the set's order), with each
+        model's row in it, and the places of the models that give (watts_give, read at
+        load)."""
+        packs = list({id(p): p for _, p in self._order}.values())
+        values = np.zeros((len(packs), 4), np.float64)
+        charging = np.zeros(len(packs), np.bool_)
+        row = {}
+        for k, p in enumerate(packs):
+            p.move_to(values, charging, k)
+            row[id(p)] = k
+        models = [m for m, _ in self._order]
+        self._table = (values, models,
+                       np.array([row[id(p)] for _, p in self._order], np.int64),
+                       [k for k, m in enumerate(models) if m.watts_give > 0])
 
     def position_updated(self, model, velocity):
         """ModelPosition::Update's power draw, from the velocity before its bounds."""
@@ -202,22 +259,25 @@ class Energy:
 
     # ---- World::Update's last part ---------------------------------------------------------
     def update(self):
-        """Model::UpdateCharge of every model of the set, in Stage's order."""
+        """Model::UpdateCharge of every model of the set, in Stage's order: the
+        dissipations in a kernel, stopped at each charger that may give or has charged
+        something (its part in Python, _give); a quiet charger that charged nothing last
+        step would only note that it charges nothing."""
         quiet = self._quiet_chargers()
-        for model, pack in self._order:
-            watts = model.watts
-            if watts > 0:           # pack.dissipate(joules), inlined: some 40 a step in fasr
-                joules = watts * (ENERGY_INTERVAL_US * 1e-6)
-                stored = pack.stored
-                if stored < 0:
-                    pack.supplied += joules
-                    pack.dissipated += joules
-                else:
-                    amount = min(stored, joules)
-                    pack.stored = stored - amount
-                    pack.dissipated += amount
-            if model.watts_give > 0:
+        if self._table is None:
+            self._adopt()
+        values, models, rows, givers = self._table
+        watts = np.fromiter(map(_WATTS, models), np.float64, len(models))
+        start = 0
+        for k in givers:
+            model, pack = self._order[k]
+            if model not in quiet or self._charging.get(model):
+                # a charger that may give, or stop charging what it charged: its own
+                # dissipation and those before it first, then its part in Python
+                _dissipate(rows, watts, start, k + 1, values, ENERGY_INTERVAL_US * 1e-6)
+                start = k + 1
                 self._give(model, pack, model in quiet)
+        _dissipate(rows, watts, start, len(models), values, ENERGY_INTERVAL_US * 1e-6)
 
     def _give(self, model, pack, quiet):
         """A charger's part of UpdateCharge: to every model touching it that takes (none
@@ -325,6 +385,28 @@ def outline_cells(model, ppm):
     if not xs:
         return np.zeros(0, np.int64), np.zeros(0, np.int64)
     return np.concatenate(xs), np.concatenate(ys)
+
+
+_WATTS = attrgetter('watts')
+
+
+@kernel
+def _dissipate(rows, watts, start, end, values, seconds):
+    """PowerPack.dissipate(watts x seconds) of the models start..end-1 of the set, in turn,
+    each on its pack's row of values (only those with watts above 0)."""
+    for k in range(start, end):
+        w = watts[k]
+        if w > 0:
+            r = rows[k]
+            joules = w * seconds
+            stored = values[r, STORED]
+            if stored < 0:                      # an infinite supply gives it all
+                values[r, SUPPLIED] += joules
+                values[r, DISSIPATED] += joules
+            else:
+                amount = min(stored, joules)
+                values[r, STORED] = stored - amount
+                values[r, DISSIPATED] += amount
 
 
 def _share_cell(xs, ys, ox, oy):

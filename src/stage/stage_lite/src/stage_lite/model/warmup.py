@@ -152,10 +152,12 @@ def warm_fasr():
 def warm_chargers(world):
     """A charger's look for the moving blocks it touches, and the static chargers' look for
     any (energy.py's kernels), on the cells of the first robot's first block, with the
-    types Energy.touching and Energy._quiet_chargers give them."""
+    types Energy.touching and Energy._quiet_chargers give them; and the packs'
+    dissipations, as Energy.update calls them."""
     import numpy as np
 
-    from .energy import Energy, _cells_hold_moving
+    from .energy import Energy, _cells_hold_moving, _dissipate
+    _dissipate(np.zeros(1, np.int64), np.ones(1), 0, 1, np.ones((1, 4)), 0.1)
     space = world.space
     layer = world.updates % 2
     k = world.robots[0].block_ids[0]
