@@ -98,6 +98,7 @@ class FiducialIndex:
         self.poses = python_poses
         self._constants = {}
         self._finder_row = {}
+        self.finder_sets = {}       # finders.update_all's constants per list of finders
         self.finder_table = dict(ints=np.zeros((0, 4), np.int64),
                                  floats=np.zeros((0, 3), np.float64))
         self.models = []      # Stage's vector: insertion order (erase, then push_back)

@@ -36,32 +36,27 @@ def update_all(finders, index, sight, layer):
         return
     n, m = len(finders), len(members)
     member_root, member_index, _, by_rank, rank_at = index.constants(members)
-    rows = index.finder_rows(finders, sight)
-    table = index.finder_table
-    at = table['ints'][rows, 3]
-    # the members' and the finders' global poses in one chain, the finders' bodies' frames
-    models = members + finders
-    both = index.poses(models, at=np.concatenate((member_index, at)))
-    poses = both[:m]
-    keys = np.array(list(map(_KEY, models)), np.int64)
-    member_key = keys[:m]
+    at, fixed, tree = _finder_constants(index, finders, sight)
+    # the members' and the finders' global poses, the finders' bodies' frames
+    poses = index.poses(members, at=member_index)
+    member_key = np.array(list(map(_KEY, members)), np.int64)
     member_return = np.array(list(map(_RETURN, members)), np.int64)
     fin = np.empty((n, 10), np.float64)
-    fin[:, 0:3] = both[m:, (0, 1, 3)]
+    fin[:, 0:3] = index.poses(finders, at=at)[:, (0, 1, 3)]
     fin[:, 3:7] = index.poses(finders, body=True, at=at)
-    fin[:, 7:10] = table['floats'][rows]
+    fin[:, 7:10] = fixed['floats']
     ints = np.empty((n, 3), np.int64)
-    ints[:, 0] = keys[m:]
-    ints[:, 1:3] = table['ints'][rows, 0:2]
+    ints[:, 0] = list(map(_KEY, finders))
+    ints[:, 1:3] = fixed['ints']
     # the static tables their rays read: one per (height, tree holding static bodies or not)
-    z, tree = fin[:, 5], table['ints'][rows, 2]
+    z = fin[:, 5].tolist()
     classes = np.zeros(n, np.int64)
-    if (z == z[0]).all() and (tree == tree[0]).all():
-        st = sight.static_first(float(z[0]), int(tree[0]))
+    if z.count(z[0]) == n and tree.count(tree[0]) == n:
+        st = sight.static_first(z[0], tree[0])
     else:
         tables = []
         for i in range(n):
-            got = sight.static_first(float(z[i]), int(tree[i]))
+            got = sight.static_first(z[i], tree[i])
             for k, t in enumerate(tables):
                 if t is got:
                     classes[i] = k
@@ -84,6 +79,26 @@ def update_all(finders, index, sight, layer):
     step = _Seen(members, poses, out, count, nearest)
     for i, f in enumerate(finders):     # (their readings are made from it when asked)
         f._seen = (step, i)
+
+
+def _finder_constants(index, finders, sight):
+    """(the finders' model indices, their 'ints' (root, ignore_zloc) and 'floats' (range_max,
+    range_max_id, fov) of index.finder_table, the trees sight's static tables know them by,
+    a list): what a finder does not change once loaded, kept per list of finders and
+    sight (a run's updates take the same finders again and again)."""
+    key = (tuple(finders), sight)
+    cache = index.finder_sets
+    got = cache.get(key)
+    if got is None:
+        if len(cache) > 64:
+            cache.clear()
+        rows = index.finder_rows(finders, sight)
+        table = index.finder_table
+        got = cache[key] = (table['ints'][rows, 3],
+                            dict(ints=table['ints'][rows, 0:2],
+                                 floats=table['floats'][rows]),
+                            table['ints'][rows, 2].tolist())
+    return got
 
 
 class _Seen:
