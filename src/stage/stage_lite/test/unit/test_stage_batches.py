@@ -188,21 +188,28 @@ def foragers_state(w):
               for cb, _, _ in entries if isinstance(getattr(cb.function, '__self__', None),
                                                      fasr.Forager)]
     return [(r.pos.token, r.mode, r.avoid_count, r.charger_ahoy, r.charger_range,
-             r.work_get, r.work_put, r.pos.get_flag_count()) for r in robots]
+             r.work_get, r.work_put, r.at_dest, r.pos.get_flag_count()) for r in robots]
 
 
-def test_fasrs_batch_is_its_laser_updates_one_by_one(monkeypatch):
+def test_fasrs_batches_are_its_updates_one_by_one(monkeypatch):
     # fasr's three robots on the small room (one docks, charges and undocks, one fetches a
-    # flag, one delivers it): the kernel's case most often, Python's too, and avoids drawn
-    calls = {'kernel': 0, 'python': 0}
-    run = fasr_batch.FasrBatch.run
+    # flag, one delivers it): each batch's case most often, Python's too (a laser's update
+    # while hungry or docking, a finder's that saw the charger, a position's at the source
+    # or the sink), and avoids drawn
+    calls = {(batch, path): 0 for batch in ('lasers', 'positions')
+             for path in ('batch', 'python')}
 
-    def counted_run(self, plan, rows):
-        done = run(self, plan, rows)
-        calls['kernel'] += done
-        calls['python'] += int(done < rows.size)
-        return done
-    monkeypatch.setattr(fasr_batch.FasrBatch, 'run', counted_run)
+    def counted(name, run):
+        def counted_run(self, plan, rows):
+            done = run(self, plan, rows)
+            calls[name, 'batch'] += done
+            calls[name, 'python'] += int(done < rows.size)
+            return done
+        return counted_run
+    monkeypatch.setattr(fasr_batch.FasrBatch, 'run',
+                        counted('lasers', fasr_batch.FasrBatch.run))
+    monkeypatch.setattr(fasr_batch.FasrPositionBatch, 'run',
+                        counted('positions', fasr_batch.FasrPositionBatch.run))
     path = os.path.join(os.path.dirname(__file__), '..', 'worlds', 'fasr_small.world')
     batched = load_world(path, seed=7, stageros=False)
     alone = load_world(path, seed=7, stageros=False)
@@ -215,7 +222,8 @@ def test_fasrs_batch_is_its_laser_updates_one_by_one(monkeypatch):
         state = foragers_state(batched)
         assert state == foragers_state(alone), step
         avoided.update(token for token, _, count, *_ in state if count > 0)
-    assert calls['kernel'] > 2 * calls['python'] > 0
+    for name in ('lasers', 'positions'):
+        assert calls[name, 'batch'] > 2 * calls[name, 'python'] > 0, name
     assert avoided
 
 

@@ -1,4 +1,5 @@
-"""fasr's laser updates, robot after robot, in one kernel (scheduler.py's batch protocol).
+"""fasr's laser and finder updates, robot after robot, in one batch (scheduler.py's batch
+protocol): the laser updates in one kernel.
 
 Most of fasr's laser updates are one case: a working robot that is not hungry. It either
 avoids (a new avoid drawing its count from random()'s stream, glibc_random.random_next) or
@@ -12,6 +13,10 @@ What the kernel reads of each robot's Python state (mode, avoid count, hunger, w
 carries a flag) is gathered at the step's first batch run: the position updates, which move
 the flags, come before every laser update (queue 0's callbacks first), the packs drain after
 the callbacks, and a laser update changes only its own robot's mode and avoid count.
+
+The finders' updates come between the lasers' (both in the worker queues). One that saw
+nothing does only `charger_ahoy = False`, which the batch sets itself (the kernel's case
+never reads it); one that saw something runs in Python.
 """
 import math
 
@@ -28,8 +33,8 @@ VELOCITY = MODE_CODE['velocity']
 
 
 class FasrBatch:
-    """fasr's Forager.laser_update in turn, in one kernel where the case allows (see the
-    module)."""
+    """fasr's Forager.laser_update and fiducial_update in turn, the lasers' in one kernel
+    where the case allows (see the module)."""
 
     def __init__(self, rules):
         self.rules = rules          # fasr's constants, as a dict (fasr.py gives them)
@@ -37,11 +42,16 @@ class FasrBatch:
     def prepare(self, entries):
         """The robots' fixed tables, or None when they do not share the world's arrays."""
         robots = [callback.function.__self__ for callback, _, _ in entries]
+        # per entry: the finder (a finder's update), or None (a laser's)
+        finders = [callback.handle if callback.function.__func__ is self.rules['finder_update']
+                   else None for callback, _, _ in entries]
         n = len(robots)
-        plan = dict(robots=robots, step=None, first=np.zeros(n, np.int64),
+        plan = dict(robots=robots, finders=finders, step=None, first=np.zeros(n, np.int64),
                     samples=np.zeros(n, np.int64), row=np.zeros(n, np.int64))
         arrays = None
         for i, r in enumerate(robots):
+            if finders[i] is not None:
+                continue
             sensor = r.laser.sensors[0]
             place = sensor.first_range_at()
             goal, mode, row = r.pos.command_rows()
@@ -55,7 +65,13 @@ class FasrBatch:
             plan['first'][i] = place[1]
             plan['samples'][i] = len(sensor.ranges)
             plan['row'][i] = row
+        if arrays is None:
+            return None
         plan['beams'], plan['goal'], plan['mode'], plan['pose'] = arrays
+        # each robot's pack (a model's is made with it: the same object for good)
+        plan['packs'] = [r.pos.find_power_pack() for r in robots]
+        if any(p is None for p in plan['packs']):
+            return None
         plan['world'] = robots[0].pos.world
         plan['random'] = plan['world'].random_stream()
         rules = self.rules
@@ -66,11 +82,33 @@ class FasrBatch:
         return plan
 
     def run(self, plan, rows):
-        robots = plan['robots']
+        robots, finders = plan['robots'], plan['finders']
         now = plan['world'].sim_time_now()
         if plan['step'] != now:
             self._gather(plan)
             plan['step'] = now
+        order = rows.tolist()
+        n = len(order)
+        j = 0
+        while j < n:
+            i = order[j]
+            if finders[i] is not None:          # a finder's update
+                if finders[i].seen_count():
+                    return j                    # what it saw: its update in Python
+                robots[i].charger_ahoy = False  # all it does when it saw nothing
+                j += 1
+                continue
+            k = j + 1                           # the lasers' run from j
+            while k < n and finders[order[k]] is None:
+                k += 1
+            done = self._lasers(plan, rows[j:k])
+            j += done
+            if j < k:
+                return j
+        return n
+
+    def _lasers(self, plan, rows):
+        """The laser updates `rows` in the kernel while each is its case: how many."""
         state = plan['state']
         rules = self.rules
         stream = plan['random']
@@ -82,21 +120,75 @@ class FasrBatch:
                          rules['cruise'], rules['cell_origin'], rules['cell_size'],
                          rules['cells'])
         avoid = state['avoid']
+        robots = plan['robots']
         for i in rows[:done].tolist():      # a run is a few robots: no numpy for them
             robots[i].avoid_count = int(avoid[i])
         return done
 
     def _gather(self, plan):
-        """This step's state of every robot, as the kernel reads it."""
-        work = self.rules['work']
+        """This step's state of every robot, as the kernel reads it (a finder's entry: not
+        the kernel's case)."""
+        work, hungry = self.rules['work'], self.rules['hungry']
         simple, avoid, carrying = [], [], []
-        for r in plan['robots']:
-            simple.append(r.mode == work and not r.hungry())
+        for r, finder, pack in zip(plan['robots'], plan['finders'], plan['packs'],
+                                   strict=True):
+            if finder is not None:
+                simple.append(False)
+                avoid.append(0)
+                carrying.append(0)
+                continue
+            # Forager.hungry(), its pack found once
+            simple.append(r.mode == work and not pack.proportion_remaining() < hungry)
             avoid.append(r.avoid_count)
             carrying.append(r.pos.get_flag_count() > 0)
         plan['state'] = dict(simple=np.array(simple, np.bool_),
                              avoid=np.array(avoid, np.int64),
                              carrying=np.array(carrying, np.int64))
+
+
+class FasrPositionBatch:
+    """fasr's Forager.position_update in turn: in one kernel the robots away from the source
+    and the sink, whose update only notes that they are not at the sink (`at_dest`); a
+    robot near either runs in Python (it may take or give a flag)."""
+
+    def __init__(self, rules):
+        self.rules = rules          # fasr's constants, as a dict (fasr.py gives them)
+
+    def prepare(self, entries):
+        """The robots and their poses' rows, or None when they do not share one array."""
+        robots = [callback.function.__self__ for callback, _, _ in entries]
+        rows = [r.pos.pose_rows() for r in robots]
+        if not rows or any(pose is not rows[0][0] for pose, _ in rows):
+            return None
+        return dict(robots=robots, pose=rows[0][0],
+                    row=np.array([row for _, row in rows], np.int64))
+
+    def run(self, plan, rows):
+        rules = self.rules
+        done = _away_all(rows, plan['pose'], plan['row'], rules['source'][0],
+                         rules['source'][1], rules['source_radius'], rules['sink'][0],
+                         rules['sink'][1], rules['sink_radius'])
+        robots = plan['robots']
+        for i in rows[:done].tolist():
+            robots[i].at_dest = False
+        return done
+
+
+@kernel
+def _away_all(rows, pose, row, source_x, source_y, source_radius, sink_x, sink_y,
+              sink_radius):
+    """How many of the robots `rows`, in turn, are neither within source_radius of the
+    source nor within sink_radius of the sink (position_update's tests; hypot is the C
+    library's here, Python's own in fasr.py: they can differ in the last bit, which flips a
+    test only at a distance within 1e-16 of a radius)."""
+    for j in range(rows.shape[0]):
+        p = row[rows[j]]
+        x = pose[p, 0]
+        y = pose[p, 1]
+        if math.hypot(source_x - x, source_y - y) < source_radius or \
+                math.hypot(sink_x - x, sink_y - y) < sink_radius:
+            return j
+    return rows.shape[0]
 
 
 @kernel

@@ -21,8 +21,9 @@ Rule for rule as Stage's:
 - at each finder update: the first reading with id 2 is the charger (range, bearing, his
   heading); none: no charger in sight.
 The cell of a pose is ((x + 8) / 4, (y + 8) / 4), truncated toward zero, held to 0..3.
-A working robot's laser update that is not hungry runs in one kernel with the others'
-(_fasr_batch.py), the same to the bit.
+A working robot's laser update that is not hungry runs in one kernel with the others', and
+a finder's update that saw nothing beside them, and the position updates away from the
+source and the sink in another (_fasr_batch.py), the same to the bit.
 """
 import math
 
@@ -30,7 +31,7 @@ from stage_lite.model.stage_api import normalize
 
 from ._avoid import AVOID_PART, avoid_step, beam_rule
 from ._dock import MODE_DOCK, MODE_UNDOCK, MODE_WORK, approach, run_mode, start_working
-from ._fasr_batch import FasrBatch
+from ._fasr_batch import FasrBatch, FasrPositionBatch
 
 CRUISE_SPEED = 0.4        # m/s
 AVOID_SPEED = 0.05        # m/s
@@ -200,8 +201,13 @@ class Forager:
         return False
 
 
-# the working robots' laser updates in one kernel (_fasr_batch.py), the rest as above
-Forager.laser_update.batch = FasrBatch(dict(
+# the working robots' laser updates in one kernel and the finders' that saw nothing in the
+# same batch (_fasr_batch.py), the rest as above
+Forager.laser_update.batch = Forager.fiducial_update.batch = FasrBatch(dict(
     work=MODE_WORK, front=MIN_FRONT_DISTANCE, stop=STOP_DISTANCE, avoid_speed=AVOID_SPEED,
     avoid_turn=AVOID_TURN, avoid_duration=AVOID_DURATION, cruise=CRUISE_SPEED, need=NEED,
-    have=HAVE, cell_origin=CELL_ORIGIN, cell_size=CELL_SIZE, cells=CELLS))
+    have=HAVE, cell_origin=CELL_ORIGIN, cell_size=CELL_SIZE, cells=CELLS,
+    finder_update=Forager.fiducial_update, hungry=HUNGRY))
+# the position updates away from the source and the sink in one kernel (_fasr_batch.py)
+Forager.position_update.batch = FasrPositionBatch(dict(
+    source=SOURCE_XY, source_radius=SOURCE_RADIUS, sink=SINK_XY, sink_radius=SINK_RADIUS))

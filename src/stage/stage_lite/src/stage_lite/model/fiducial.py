@@ -280,6 +280,13 @@ class Fiducial(models.Fiducial):
         self._fiducials = value
         self._seen = None
 
+    def seen_count(self):
+        """How many readings the last update made, without making them."""
+        if self._seen is not None:
+            step, i = self._seen
+            return int(step.count[i])
+        return len(self._fiducials)
+
     def last_nearest(self):
         """(update_all's nearest array, this finder's row in it) while its readings are not
         made, else None (then nearest() computes it from them)."""

@@ -62,6 +62,10 @@ class FiducialApi(ModelApi):
     def get_fiducials(self):
         return self.fiducials
 
+    def seen_count(self):
+        """len(fiducials), without making them (for a controller's batch)."""
+        return self._model.seen_count()
+
     def nearest(self):
         """(range, his heading relative to the finder's) of the first of the readings of
         the least range, or None when it saw nothing: min(fiducials, by range), without

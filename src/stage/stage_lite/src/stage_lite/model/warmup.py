@@ -11,8 +11,8 @@ expand_swarm and pioneer_flocking on two others (their batches' kernels) calls e
 with the argument types stageros uses (test_stage_warmup.py checks that none is left out);
 a second world, whose robot stands on another model, the kernels a World moving its robots
 one by one calls; a third, two robots far apart, the kernels that move robots two at a
-time; fasr2's planner and its batch's kernel, and fasr's batch's kernel, are called on their
-own.
+time; fasr2's planner and its batch's kernel, and fasr's batches' kernels, are called on
+their own.
 """
 import glob
 import hashlib
@@ -137,11 +137,13 @@ def warm_planner():
 
 
 def warm_fasr():
-    """fasr's batch's kernel, with the types FasrBatch.run gives it (one robot that starts
-    an avoid)."""
+    """fasr's batches' kernels, with the types FasrBatch and FasrPositionBatch give them
+    (one robot that starts an avoid, away from the source and the sink)."""
     import numpy as np
 
-    from stage_lite.controllers._fasr_batch import _work_all
+    from stage_lite.controllers._fasr_batch import _away_all, _work_all
+    _away_all(np.zeros(1, np.int64), np.zeros((1, 4)), np.zeros(1, np.int64), -7.0, -7.0,
+              2.0, 7.0, 7.0, 1.0)
     ints = np.zeros(1, np.int64)
     _work_all(ints, np.ones(1, np.bool_), ints.copy(), ints, np.zeros((2, 4, 4)),
               np.zeros(4), ints, np.array([4]), np.zeros((1, 4)), ints, np.zeros((1, 4)),
