@@ -160,6 +160,20 @@ def test_a_finite_charger_gives_what_it_has_and_a_full_pack_takes_no_more(tmp_pa
     assert named(w, 'near').power_pack.stored == 10000.0
 
 
+def test_a_static_charger_moved_at_run_time_charges_where_it_now_stands(tmp_path):
+    # its cells (and the quiet chargers' look) found again after set_pose: a robot it was
+    # moved beside is charged from the next update on
+    w = world(tmp_path, CHARGER % (-1, 500) + TAKER % ('robot', -2, 300), stageros=False)
+    charger, robot = named(w, 'charger'), named(w, 'robot')
+    for _ in range(3):
+        w.step()
+    assert robot.power_pack.stored == 100.0 and not robot.power_pack.charging
+    w.handle(charger).set_pose((-1.85, 0.0, 0.0, 0.0))     # against the robot's front
+    w.step()
+    assert robot.power_pack.charging
+    assert robot.power_pack.stored == pytest.approx(100.0 + 300 * 0.1)
+
+
 def listed_in_python(space, xs, ys, layer):
     """The moving blocks' models listed in cells (xs, ys): each cell's list walked."""
     from stage_lite.model.grid import REGION, region_index

@@ -253,6 +253,13 @@ class Energy:
                        np.array([row[id(p)] for _, p in self._order], np.int64),
                        [k for k, m in enumerate(models) if m.watts_give > 0])
 
+    def statics_moved(self):
+        """A static model was moved, resized or made (runtime_models): the static chargers'
+        and takers' cells found again when next needed."""
+        self._static_cells.clear()
+        self._static_takers = None
+        self._quiet = None
+
     def position_updated(self, model, velocity):
         """ModelPosition::Update's power draw, from the velocity before its bounds."""
         model.watts = position_watts(model.mass, velocity)

@@ -180,6 +180,7 @@ def _redraw(world, model):
     else:
         world._statics_changed = True
         world._static_poses.clear()       # World.global_poses's, of static models
+        world.energy.statics_moved()        # the static chargers' and takers' cells
 
 
 def _moves(world, model):
