@@ -2,11 +2,15 @@
 fasr2.cc), each with its own middle part and distances: something nearer than `front` in the
 middle beams, from n/part to n - n/part exclusive (integer division), is an obstruction;
 anything nearer than `stop` anywhere stops the robot; the left half is i > n/2, the right
-half the rest. And the avoid step fasr and fasr2 take on it (their ObstacleAvoid). Not a
-controller itself (no init)."""
+half the rest. And the avoid step fasr and fasr2 take on it (their ObstacleAvoid), in
+Python and in their batches' kernels. Not a controller itself (no init)."""
 import numpy as np
 
+from stage_lite.model.glibc_random import random_next
 from stage_lite.model.jit import kernel
+from stage_lite.model.robot_state import MODE_CODE
+
+VELOCITY = MODE_CODE['velocity']
 
 AVOID_PART = 4        # fasr's and fasr2's avoid step reads the scan's middle half
 
@@ -52,3 +56,37 @@ def _beam_rule(scan, part, front, stop):
         else:
             min_right = min(min_right, r)
     return obstruction, too_close, min_left, min_right
+
+
+@kernel
+def avoid_step_in_kernel(scan, avoid, i, command, mode, p, table, pointers, front, stop,
+                         speed, turn, duration):
+    """avoid_step for a batch's kernel: robot i's avoid count in avoid[i], its command in
+    row p of command and mode, random()'s stream as (table, pointers) (random_next). True
+    while avoiding."""
+    obstruction, too_close, min_left, min_right = _beam_rule(scan, AVOID_PART, front, stop)
+    if not (obstruction or too_close or avoid[i] > 0):
+        return False
+    command[p, 0] = 0.0 if too_close else speed
+    mode[p] = VELOCITY
+    if avoid[i] < 1:                          # a new avoid: its count drawn
+        avoid[i] = random_next(table, pointers) % duration + duration
+        command[p, 3] = -turn if min_left < min_right else turn
+    avoid[i] -= 1
+    return True
+
+
+def laser_rows(pos, sensor, arrays):
+    """Where a batch's kernel finds a robot: ((the world's beams, goals, modes, poses), where
+    the sensor's ranges start in the beams, the robot's row in the others); None when those
+    arrays are not `arrays` (the robots' before it; None for the first), or the robot's
+    command and pose rows differ, or the world does not cast the sensor."""
+    place = sensor.first_range_at()
+    goal, mode, row = pos.command_rows()
+    pose, pose_row = pos.pose_rows()
+    if place is None or pose_row != row:
+        return None
+    here = (place[0], goal, mode, pose)
+    if arrays is not None and any(a is not b for a, b in zip(here, arrays, strict=True)):
+        return None
+    return here, place[1], row

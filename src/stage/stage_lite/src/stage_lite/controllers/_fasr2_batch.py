@@ -16,15 +16,12 @@ import math
 
 import numpy as np
 
-from stage_lite.model.glibc_random import random_next
 from stage_lite.model.jit import kernel
 from stage_lite.model.motion import normalize
-from stage_lite.model.robot_state import MODE_CODE
 
-from ._avoid import AVOID_PART, _beam_rule
+from ._avoid import VELOCITY, avoid_step_in_kernel, laser_rows
 from ._fasr2_plans import best_node, reach
 
-VELOCITY = MODE_CODE['velocity']
 OTHER_GOAL, SOURCE_GOAL, SINK_GOAL = 0, 1, 2
 # a robot the kernel leaves to its own update (the other fields unread)
 NOT_SIMPLE = (False, OTHER_GOAL, 0, 0, 0, False, -1, 0.0, 0.0, False)
@@ -44,18 +41,11 @@ class Fasr2Batch:
                     samples=np.zeros(n, np.int64), row=np.zeros(n, np.int64))
         arrays = None
         for i, r in enumerate(robots):
-            place = r.scan.first_range_at()
-            goal, mode, row = r.pos.command_rows()
-            pose, pose_row = r.pos.pose_rows()
-            if place is None or pose_row != row:
+            found = laser_rows(r.pos, r.scan, arrays)
+            if found is None:
                 return None
-            here = (place[0], goal, mode, pose)
-            arrays = arrays or here
-            if any(a is not b for a, b in zip(here, arrays, strict=True)):
-                return None
-            plan['first'][i] = place[1]
+            arrays, plan['first'][i], plan['row'][i] = found
             plan['samples'][i] = len(r.scan.ranges)
-            plan['row'][i] = row
         plan['beams'], plan['goal'], plan['mode'], plan['pose'] = arrays
         shared = robots[0].shared
         if any(r.shared is not shared for r in robots):
@@ -148,16 +138,9 @@ def _work_all(rows, simple, kind, goal, wait, avoid, hungry, plan, cached, goal_
                 return j
             if kind[i] == SOURCE_GOAL and wait[i] > 0:     # waiting: a draw
                 return j
-        scan = beams[first[i]:first[i] + samples[i]]
-        obstruction, too_close, min_left, min_right = _beam_rule(scan, AVOID_PART, front,
-                                                                 stop)
-        if obstruction or too_close or avoid[i] > 0:  # avoid_step
-            command[p, 0] = 0.0 if too_close else avoid_speed
-            mode[p] = VELOCITY
-            if avoid[i] < 1:                          # a new avoid: its count drawn
-                avoid[i] = random_next(table, pointers) % avoid_duration + avoid_duration
-                command[p, 3] = -avoid_turn if min_left < min_right else avoid_turn
-            avoid[i] -= 1
+        if avoid_step_in_kernel(beams[first[i]:first[i] + samples[i]], avoid, i, command,
+                                mode, p, table, pointers, front, stop, avoid_speed,
+                                avoid_turn, avoid_duration):
             continue
         if hungry[i] or plan[i] < 0:
             return j

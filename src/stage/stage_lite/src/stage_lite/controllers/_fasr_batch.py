@@ -22,14 +22,10 @@ import math
 
 import numpy as np
 
-from stage_lite.model.glibc_random import random_next
 from stage_lite.model.jit import kernel
 from stage_lite.model.motion import normalize
-from stage_lite.model.robot_state import MODE_CODE
 
-from ._avoid import AVOID_PART, _beam_rule
-
-VELOCITY = MODE_CODE['velocity']
+from ._avoid import VELOCITY, avoid_step_in_kernel, laser_rows
 
 
 class FasrBatch:
@@ -53,18 +49,11 @@ class FasrBatch:
             if finders[i] is not None:
                 continue
             sensor = r.laser.sensors[0]
-            place = sensor.first_range_at()
-            goal, mode, row = r.pos.command_rows()
-            pose, pose_row = r.pos.pose_rows()
-            if place is None or pose_row != row:
+            found = laser_rows(r.pos, sensor, arrays)
+            if found is None:
                 return None
-            here = (place[0], goal, mode, pose)
-            arrays = arrays or here
-            if any(a is not b for a, b in zip(here, arrays, strict=True)):
-                return None
-            plan['first'][i] = place[1]
+            arrays, plan['first'][i], plan['row'][i] = found
             plan['samples'][i] = len(sensor.ranges)
-            plan['row'][i] = row
         if arrays is None:
             return None
         plan['beams'], plan['goal'], plan['mode'], plan['pose'] = arrays
@@ -202,16 +191,9 @@ def _work_all(rows, simple, avoid, carrying, headings, beams, first, samples, po
         if not simple[i]:
             return j
         p = row[i]
-        scan = beams[first[i]:first[i] + samples[i]]
-        obstruction, too_close, min_left, min_right = _beam_rule(scan, AVOID_PART, front,
-                                                                 stop)
-        if obstruction or too_close or avoid[i] > 0:  # avoid_step
-            command[p, 0] = 0.0 if too_close else avoid_speed
-            mode[p] = VELOCITY
-            if avoid[i] < 1:                          # a new avoid: its count drawn
-                avoid[i] = random_next(table, pointers) % avoid_duration + avoid_duration
-                command[p, 3] = -avoid_turn if min_left < min_right else avoid_turn
-            avoid[i] -= 1
+        if avoid_step_in_kernel(beams[first[i]:first[i] + samples[i]], avoid, i, command,
+                                mode, p, table, pointers, front, stop, avoid_speed,
+                                avoid_turn, avoid_duration):
             continue
         x = pose[p, 0]
         y = pose[p, 1]
