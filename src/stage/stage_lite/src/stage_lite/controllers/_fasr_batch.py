@@ -57,10 +57,8 @@ class FasrBatch:
         if arrays is None:
             return None
         plan['beams'], plan['goal'], plan['mode'], plan['pose'] = arrays
-        # each robot's pack (a model's is made with it: the same object for good)
-        plan['packs'] = [r.pos.find_power_pack() for r in robots]
-        if any(p is None for p in plan['packs']):
-            return None
+        if any(r.pack is None for r in robots):
+            return None                 # hungry() fails in Python, where its error is told
         plan['world'] = robots[0].pos.world
         plan['random'] = plan['world'].random_stream()
         rules = self.rules
@@ -117,17 +115,15 @@ class FasrBatch:
     def _gather(self, plan):
         """This step's state of every robot, as the kernel reads it (a finder's entry: not
         the kernel's case)."""
-        work, hungry = self.rules['work'], self.rules['hungry']
+        work = self.rules['work']
         simple, avoid, carrying = [], [], []
-        for r, finder, pack in zip(plan['robots'], plan['finders'], plan['packs'],
-                                   strict=True):
+        for r, finder in zip(plan['robots'], plan['finders'], strict=True):
             if finder is not None:
                 simple.append(False)
                 avoid.append(0)
                 carrying.append(0)
                 continue
-            # Forager.hungry(), its pack found once
-            simple.append(r.mode == work and not pack.proportion_remaining() < hungry)
+            simple.append(r.mode == work and not r.hungry())
             avoid.append(r.avoid_count)
             carrying.append(r.pos.get_flag_count() > 0)
         plan['state'] = dict(simple=np.array(simple, np.bool_),

@@ -113,6 +113,7 @@ class Forager:
             raise LookupError('%s carries no unused fiducial finder' % position.token)
         self.source = source
         self.sink = sink
+        self.pack = position.find_power_pack()  # a model's pack is made with it: found once
         start_working(self)
         self.work_get = 0
         self.work_put = 0
@@ -126,10 +127,10 @@ class Forager:
 
     # ---- the power pack ------------------------------------------------------------------
     def hungry(self):
-        return self.pos.find_power_pack().proportion_remaining() < HUNGRY
+        return self.pack.proportion_remaining() < HUNGRY
 
     def full(self):
-        return self.pos.find_power_pack().proportion_remaining() > FULL
+        return self.pack.proportion_remaining() > FULL
 
     # ---- the modes -----------------------------------------------------------------------
     def laser_update(self, laser, _):
@@ -207,7 +208,7 @@ Forager.laser_update.batch = Forager.fiducial_update.batch = FasrBatch(dict(
     work=MODE_WORK, front=MIN_FRONT_DISTANCE, stop=STOP_DISTANCE, avoid_speed=AVOID_SPEED,
     avoid_turn=AVOID_TURN, avoid_duration=AVOID_DURATION, cruise=CRUISE_SPEED, need=NEED,
     have=HAVE, cell_origin=CELL_ORIGIN, cell_size=CELL_SIZE, cells=CELLS,
-    finder_update=Forager.fiducial_update, hungry=HUNGRY))
+    finder_update=Forager.fiducial_update))
 # the position updates away from the source and the sink in one kernel (_fasr_batch.py)
 Forager.position_update.batch = FasrPositionBatch(dict(
     source=SOURCE_XY, source_radius=SOURCE_RADIUS, sink=SINK_XY, sink_radius=SINK_RADIUS))
