@@ -457,10 +457,11 @@ def keep_every_publisher_update():
     registration (RegManager.reg_added) asks the master for the topic's publishers and
     queues the answer when the call returns; if a publisher registers in between, the
     master's publisherUpdate naming it can be queued first, and the older list without it
-    wins: the subscription never connects to that publisher. swarm_controller lost
-    robots' scans so, about one run in ten, when it subscribed while stageros registered
-    its topics (the multi-host swarm test). Here a topic's list is queued merged with the
-    lists still waiting for it, so nothing named is dropped. Connecting is unchanged:
+    wins: the subscription never connects to that publisher. Found by reading rospy while
+    the multi-host swarm test lost scans (that loss was deep_tcpros_backlog's reset); a
+    swarm controller subscribing while stageros registers its topics is this race's case
+    too. Here a topic's list is queued merged with the lists still waiting for it, so
+    nothing named is dropped. Connecting is unchanged:
     rospy's _connect_topic skips publishers already connected, and one that has left
     refuses or answers that it no longer publishes, as it would to any late subscriber.
     Call before rospy.init_node; once per process (later calls do nothing).
