@@ -1,11 +1,13 @@
 """Unit tests of course_common.tcpros_frames: whole frames in order, never a blocked sender."""
+import errno
 import socket
 import struct
 import threading
 import time
 
+import numpy as np
 import pytest
-from course_common.tcpros_frames import FrameStream, split_frames
+from course_common.tcpros_frames import FrameStream, send_keeping_gil, split_frames
 
 FRAME = struct.Struct('<II')  # a sequence number and a marker, 8 bytes like a tiny message
 MARKER = 0xC0FFEE
@@ -94,18 +96,17 @@ def test_a_stalled_reader_loses_whole_frames_and_never_blocks_the_sender(tcp_pai
     assert [seq for seq, _ in frames] == [i for i, sent in enumerate(results) if sent] + [last]
 
 
-class _ShortWriteSocket:
-    """A socket whose buffer takes `room` more bytes, then nothing until it is given more."""
+class _ShortWrites:
+    """A socket's buffer that takes `room` more bytes, then nothing until it is given more:
+    FrameStream's send_now."""
 
     def __init__(self, room):
         self.room = room
         self.data = b''
 
-    def send(self, data, flags):
-        assert flags & socket.MSG_DONTWAIT, 'frames must be sent without blocking'
+    def send_now(self, sock, data):
+        assert sock is self
         n = min(self.room, len(data))
-        if n == 0:
-            raise BlockingIOError()
         self.room -= n
         self.data += bytes(data[:n])
         return n
@@ -113,8 +114,8 @@ class _ShortWriteSocket:
 
 @pytest.mark.parametrize('room', [1, 7])
 def test_a_cut_frame_is_finished_before_the_next_and_later_ones_wait_whole(room):
-    sock = _ShortWriteSocket(room)
-    stream = FrameStream()
+    sock = _ShortWrites(room)
+    stream = FrameStream(sock.send_now)
     assert stream.send(sock, FRAME.pack(1, MARKER))  # on its way: part sent, part pending
     assert stream.pending == FRAME.size - room
     assert not stream.send(sock, FRAME.pack(2, MARKER))  # no room: frame 2 dropped whole
@@ -128,8 +129,8 @@ def test_a_cut_frame_is_finished_before_the_next_and_later_ones_wait_whole(room)
 
 
 def test_full_buffers_drop_the_frame_whole():
-    sock = _ShortWriteSocket(0)
-    stream = FrameStream()
+    sock = _ShortWrites(0)
+    stream = FrameStream(sock.send_now)
     assert not stream.send(sock, FRAME.pack(1, MARKER))
     assert stream.pending == 0 and sock.data == b''
 
@@ -142,6 +143,44 @@ def test_a_broken_connection_raises_the_socket_error(tcp_pair):
     with pytest.raises(OSError):
         for i in range(1000):
             stream.send(writer, FRAME.pack(i, MARKER))
+
+
+@pytest.mark.parametrize('make', [
+    bytes,
+    lambda b: memoryview(np.frombuffer(bytearray(b'..' + b), np.uint8))[2:],   # a frame of a batch
+    lambda b: memoryview(b),                                                 # read-only
+])
+def test_send_keeping_gil_sends_bytes_and_buffers(tcp_pair, make):
+    writer, reader = tcp_pair
+    frame = FRAME.pack(7, MARKER)
+    assert send_keeping_gil(writer, make(frame)) == FRAME.size
+    data = b''
+    while len(data) < FRAME.size:
+        data += reader.recv(4096)
+    assert data == frame
+
+
+def test_send_keeping_gil_takes_nothing_once_the_buffers_are_full(tcp_pair):
+    writer, _ = tcp_pair
+    chunk = bytes(1024)
+    taken = []
+    while len(taken) < 100000 and (not taken or taken[-1]):   # never blocks: 0 when full
+        taken.append(send_keeping_gil(writer, chunk))
+    assert taken[-1] == 0 and sum(taken) > 0
+    assert send_keeping_gil(writer, b'') == 0 and send_keeping_gil(writer, bytearray()) == 0
+
+
+def test_send_keeping_gil_raises_the_socket_errors(tcp_pair):
+    writer, reader = tcp_pair
+    reader.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack('ii', 1, 0))
+    reader.close()
+    with pytest.raises((ConnectionResetError, BrokenPipeError)):
+        for _ in range(1000):
+            send_keeping_gil(writer, b'x')
+    writer.close()
+    with pytest.raises(OSError) as closed:
+        send_keeping_gil(writer, b'x')
+    assert closed.value.errno == errno.EBADF
 
 
 @pytest.mark.parametrize('data, bodies, used', [
