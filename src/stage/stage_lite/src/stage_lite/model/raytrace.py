@@ -90,15 +90,16 @@ def trace(ox, oy, oz, angle_in, rng, ppm, ray_class, finder_root, layer,
                         best = m
                         best_seq = m
                 if dpage >= 0:
+                    # the list is in drawing order (grid.map_block): its first entry in the
+                    # way is the first drawn, unless the static one came before it
                     e = dyn_head[dpage, layer, cell]
-                    while e >= 0:
-                        if ent_seq[e] < best_seq:
-                            b = ent_block[e]
-                            m = blk_model[b]
-                            if (not (oz < blk_zmin[b] or oz > blk_zmax[b])
-                                    and model_root[m] != finder_root and model_rr[m] >= 0.0):
-                                best = m
-                                best_seq = ent_seq[e]
+                    while e >= 0 and ent_seq[e] < best_seq:
+                        b = ent_block[e]
+                        m = blk_model[b]
+                        if (not (oz < blk_zmin[b] or oz > blk_zmax[b])
+                                and model_root[m] != finder_root and model_rr[m] >= 0.0):
+                            best = m
+                            break
                         e = ent_next[e]
                 if best >= 0:
                     if ax > ay:      # STAGE_WALK_RANGE
