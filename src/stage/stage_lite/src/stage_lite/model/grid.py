@@ -11,9 +11,11 @@ Here the grid is stored for speed, without changing what a walk sees: the region
 table around the world carry their block count; the cells of regions with static bodies
 (bodies that never move) carry, per beam height, the first static model a beam would hit
 there and, per moving body's height range, whether a static obstacle is there; moving
-bodies (robots and what they carry) are kept as Stage keeps them, as ordered lists per
-cell and layer, in the order they were drawn (a sequence number per drawing), as Stage's
-per-cell vectors: a ray takes the first entry in its way. The lists are linked both ways (a head's
+bodies (robots and what they carry) are kept as Stage keeps them, as lists per cell and
+layer in the order they were drawn, as Stage's per-cell vectors: a drawing joins the end of
+its cells' lists, and its number (a sequence number) is above every earlier drawing's
+(robots moved two at a time included: motion.plan_apart), so a list is in number order too,
+which the ray walk relies on (raytrace.trace). The lists are linked both ways (a head's
 previous entry is its list's tail), so that an entry joins or leaves a list in one step
 however long the list: a crowd on one spot costs what a spread swarm does.
 """
@@ -200,35 +202,12 @@ def map_block(b, layer, vx, vy, seq, rc_start, rc_len, rc_x, rc_y, rx0, ry0, nrx
                         break
                     other = ent_next[unsigned(other)]
             tail = ent_prev[unsigned(head)]
-            if ent_seq[unsigned(tail)] <= seq:      # drawn after the cell's others: the usual
-                ent_next[unsigned(tail)] = e
-                ent_prev[unsigned(e)] = tail
-                ent_prev[unsigned(head)] = e
-            else:
-                _insert_in_order(e, seq, head, page, layer, cell, dyn_head, ent_next, ent_prev,
-                                 ent_seq)
+            ent_next[unsigned(tail)] = e
+            ent_prev[unsigned(e)] = tail
+            ent_prev[unsigned(head)] = e
         reg_count[unsigned(reg)] += 1
         reg_dyncount[unsigned(reg)] += 1
     return hit
-
-
-@kernel
-def _insert_in_order(e, seq, head, page, layer, cell, dyn_head, ent_next, ent_prev, ent_seq):
-    """Entry e (numbered seq) into its cell's list (head: its first) before the first entry
-    numbered above it, so that the list stays in drawing order. (A step's moves draw in
-    order, two sides at once included, so this never comes up in a run; it keeps the order
-    that raytrace.trace relies on whatever draws.)"""
-    after = head
-    while ent_seq[unsigned(after)] <= seq:
-        after = ent_next[unsigned(after)]
-    before = ent_prev[unsigned(after)]
-    ent_next[unsigned(e)] = after
-    ent_prev[unsigned(e)] = before
-    ent_prev[unsigned(after)] = e
-    if after == head:
-        dyn_head[unsigned(page), unsigned(layer), unsigned(cell)] = e
-    else:
-        ent_next[unsigned(before)] = e
 
 
 @kernel

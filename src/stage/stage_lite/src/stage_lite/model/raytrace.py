@@ -90,8 +90,8 @@ def trace(ox, oy, oz, angle_in, rng, ppm, ray_class, finder_root, layer,
                         best = m
                         best_seq = m
                 if dpage >= 0:
-                    # the list is in drawing order (grid.map_block): its first entry in the
-                    # way is the first drawn, unless the static one came before it
+                    # the list is in drawing order (grid.py): its first entry in the way
+                    # is the first drawn, unless the static one came before it
                     e = dyn_head[dpage, layer, cell]
                     while e >= 0 and ent_seq[e] < best_seq:
                         b = ent_block[e]
