@@ -5,6 +5,7 @@ Beam-by-beam and pose-by-pose agreement with real Stage is test_stage_golden.py'
 tests state the rules one at a time on small worlds."""
 import math
 
+import numpy as np
 import pytest
 from stage_lite.model.pose import pose_add, stage_normalize
 from stage_lite.model.world import WorldError, load_world
@@ -149,6 +150,17 @@ def test_watchdog_stop_zeroes_the_goal(tmp_path):
     assert a.command == (0.5, 0.0, 0.0)    # this step's velocity, shown in this step's odom
     w.step()
     assert a.command == (0.0, 0.0, 0.0)
+
+
+def test_goto_drives_at_the_c_librarys_hypot_of_the_error(tmp_path):
+    # Stage's position control: vx = min(hypot(y_err, x_err), 0.4), hypot the C library's.
+    # For this error Python's math.hypot gives the float next to it.
+    x, y = 0.117, 0.006
+    assert math.hypot(y, x) != np.hypot(y, x)
+    w = room_world(tmp_path, bx=-3.0)
+    w.handle(w.robots[0].model).go_to(x, y, 0.0)
+    w.step()
+    assert w.robots[0].command[0] == np.hypot(y, x)
 
 
 def test_car_drive_steers_with_angular_z(tmp_path):

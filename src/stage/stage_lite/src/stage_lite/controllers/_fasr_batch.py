@@ -164,8 +164,7 @@ def _away_all(rows, pose, row, source_x, source_y, source_radius, sink_x, sink_y
               sink_radius):
     """How many of the robots `rows`, in turn, are neither within source_radius of the
     source nor within sink_radius of the sink (position_update's tests; hypot is the C
-    library's here, Python's own in fasr.py: they can differ in the last bit, which flips a
-    test only at a distance within 1e-16 of a radius)."""
+    library's, as in fasr.py and Stage)."""
     for j in range(rows.shape[0]):
         p = row[rows[j]]
         x = pose[p, 0]

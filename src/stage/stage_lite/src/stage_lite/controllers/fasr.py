@@ -27,6 +27,8 @@ source and the sink in another (_fasr_batch.py), the same to the bit.
 """
 import math
 
+from numpy import hypot as c_hypot  # Stage's (the C library's); math.hypot differs at times
+
 from stage_lite.model.stage_api import normalize
 
 from ._avoid import AVOID_PART, avoid_step, beam_rule
@@ -176,13 +178,13 @@ class Forager:
     def position_update(self, pos, _):
         pose = pos.get_pose()
         if pos.get_flag_count() < PAYLOAD and \
-                math.hypot(SOURCE_XY[0] - pose.x, SOURCE_XY[1] - pose.y) < SOURCE_RADIUS:
+                c_hypot(SOURCE_XY[0] - pose.x, SOURCE_XY[1] - pose.y) < SOURCE_RADIUS:
             self.work_get += 1
             if self.work_get > WORK_DURATION:
                 pos.push_flag(self.source.pop_flag())
                 self.work_get = 0
         self.at_dest = False
-        if math.hypot(SINK_XY[0] - pose.x, SINK_XY[1] - pose.y) < SINK_RADIUS:
+        if c_hypot(SINK_XY[0] - pose.x, SINK_XY[1] - pose.y) < SINK_RADIUS:
             self.at_dest = True
             self.work_put += 1
             if self.work_put > WORK_DURATION:

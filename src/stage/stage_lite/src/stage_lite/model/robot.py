@@ -182,7 +182,9 @@ class Robot:
             a_err = _normalize(math.atan2(y_err, x_err) - ea)
             va = max(a_err, -1.0)
             if abs(a_err) < math.pi / 16:
-                vx = min(math.hypot(y_err, x_err), 0.4)
+                # the C library's hypot, as Stage's (math.hypot differs in the last bit at
+                # times: then the robot's speed, and its path, would not be Stage's)
+                vx = min(float(np.hypot(y_err, x_err)), 0.4)
         return [vx, 0.0, 0.0, va]
 
     @property
