@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """Keep what tests need of stage_capture's runs of Stage's own worlds, one .npz per world.
 
-usage: make_golden.py CAPTURES OUT [--prefix-steps N] [--world NAME..]
+usage: make_golden.py CAPTURES OUT [--prefix-steps N] [--world NAME..] [--add]
 
 CAPTURES holds one folder per world (capture_worlds.sh's OUT), each with run<k>.stgcap.
-For each world it writes OUT/<world>.npz and prints a JSON line of its summary:
+For each world it writes OUT/<world>.npz and prints a JSON line of its summary; with --add,
+the captures' runs are added after those OUT/<world>.npz holds already (the same world and
+states; the parting steps then found again over every run's float64 prefix, so a parting
+after the prefix is not seen), and meta's `batches` says how many runs each capture gave:
 
 - meta: a JSON string: the capture header (models, interval_sim, threads, seeds), the
   runs, the parting steps (first state where two runs put a robot more than 1 cm, and more
@@ -55,7 +58,7 @@ def places(header):
     return {k: np.array(v) for k, v in out.items()}
 
 
-def make(world, folder, out_dir, prefix_steps):
+def make(world, folder, out_dir, prefix_steps, add=False):
     paths, runs, n = load_runs(folder)
     header = runs[0][0]
     t_s = runs[0][1]['t_s'][:n]
@@ -97,14 +100,46 @@ def make(world, folder, out_dir, prefix_steps):
         stat_t_s=times.astype(np.float32),
         **stat)
     path = os.path.join(out_dir, world + '.npz')
+    if add:
+        arrays = added_runs(dict(np.load(path)), arrays)
     np.savez_compressed(path, **arrays)
-    summary = dict(world=world, robots=n_robots, runs=len(runs), states=n, dt=dt,
-                   parting=parting, bytes=os.path.getsize(path),
-                   stats={k[5:]: [[float(np.min(v[:, i])), float(np.max(v[:, i]))]
-                                  for i in range(0, len(times), 5)]
-                          for k, v in stat.items()},
-                   stat_times=times[::5].tolist())
-    return summary
+    return summary_of(world, arrays, path)
+
+
+def added_runs(old, new):
+    """The arrays of a world's .npz with the runs of `new` after those of `old`."""
+    meta_old, meta_new = (json.loads(str(a['meta'])) for a in (old, new))
+    for key in ('world_name', 'states', 'prefix_steps', 'pose_every', 'position_models'):
+        if meta_old[key] != meta_new[key]:
+            raise SystemExit('%s: %s differs: %r against %r'
+                             % (meta_new['world_name'], key, meta_old[key], meta_new[key]))
+    if old['flags'].shape[2] or new['flags'].shape[2]:
+        raise SystemExit('%s: flag counts are not merged' % meta_new['world_name'])
+    arrays = {k: (old[k] if k == 'stat_t_s' else np.concatenate([old[k], new[k]]))
+              for k in old if k != 'meta'}
+    prefix = list(arrays['prefix_pose'])
+    meta = dict(meta_old, runs=meta_old['runs'] + ['added/' + r for r in meta_new['runs']],
+                seeds=meta_old['seeds'] + meta_new['seeds'],
+                batches=meta_old.get('batches', [len(meta_old['runs'])]) + [len(meta_new['runs'])],
+                parting_state={label: swarm_stats.parting_step(prefix, tol_m=tol)
+                               for label, tol in (('1cm', 0.01), ('1e-9', 1e-9))})
+    arrays['meta'] = np.array(json.dumps(meta))
+    return arrays
+
+
+def summary_of(world, arrays, path):
+    """The JSON line printed for a world's .npz."""
+    meta = json.loads(str(arrays['meta']))
+    times = arrays['stat_t_s']
+    stat = {k: v for k, v in arrays.items() if k.startswith('stat_') and k != 'stat_t_s'}
+    dt = meta['interval_sim_us'] / 1e6
+    return dict(world=world, robots=arrays['prefix_pose'].shape[2], runs=len(meta['runs']),
+                states=meta['states'], dt=dt, parting=meta['parting_state'],
+                bytes=os.path.getsize(path),
+                stats={k[5:]: [[float(np.min(v[:, i])), float(np.max(v[:, i]))]
+                               for i in range(0, len(times), 5)]
+                       for k, v in stat.items()},
+                stat_times=times[::5].astype(np.float64).tolist())
 
 
 def main(argv=None):
@@ -113,13 +148,16 @@ def main(argv=None):
     parser.add_argument('out')
     parser.add_argument('--prefix-steps', type=int, default=100)
     parser.add_argument('--world', nargs='*')
+    parser.add_argument('--add', action='store_true',
+                        help="add the captures' runs to OUT/<world>.npz's")
     args = parser.parse_args(argv)
     worlds = args.world or sorted(os.listdir(args.captures))
     for folder in worlds:
         # capture_worlds.sh names a folder for the world file it ran: NAME_run is NAME with
         # `paused 0`, benchmark_NAME is benchmark/NAME.
         world = folder[:-len('_run')] if folder.endswith('_run') else folder
-        summary = make(world, os.path.join(args.captures, folder), args.out, args.prefix_steps)
+        summary = make(world, os.path.join(args.captures, folder), args.out, args.prefix_steps,
+                       args.add)
         print(json.dumps(summary))
         sys.stdout.flush()
 
