@@ -19,17 +19,22 @@ def make_golden():
     return module
 
 
-def golden(prefix, seeds, states=5, flags=0, world='w'):
-    """A world's arrays as make() writes them: prefix (runs, steps + 1, robots, 3)."""
+def golden(prefix, seeds, states=5, kept=(), world='w'):
+    """A world's arrays as make() writes them: prefix (runs, steps + 1, robots, 3); kept:
+    the flag models that held a flag (of source, sink and r0 .. r2), each holding its
+    column's number plus one at every state."""
     runs, steps, robots = prefix.shape[0], prefix.shape[1] - 1, prefix.shape[2]
+    models = ['r%d' % i for i in range(robots)]
     meta = dict(world_name=world, states=states, prefix_steps=steps, pose_every=1,
-                position_models=['r%d' % i for i in range(robots)], interval_sim_us=100000,
+                position_models=models, flag_models=['source', 'sink'] + models,
+                kept_flag_models=list(kept), interval_sim_us=100000,
                 runs=['run%d.stgcap' % (k + 1) for k in range(runs)], seeds=seeds,
                 parting_state={'1cm': None, '1e-9': None})
+    flags = np.zeros((runs, states, len(kept)), np.uint16) + np.arange(1, len(kept) + 1)
     return dict(meta=np.array(json.dumps(meta)), prefix_pose=prefix,
                 pose=np.zeros((runs, states, robots, 3), np.float32),
                 stall=np.zeros((runs, states, 1), np.uint8),
-                flags=np.zeros((runs, states, flags), np.uint16),
+                flags=flags.astype(np.uint16),
                 stat_t_s=np.array([0.0, 1.0], np.float32),
                 stat_path_m=np.arange(2 * runs, dtype=np.float32).reshape(runs, 2) + seeds[0])
 
@@ -50,10 +55,17 @@ def test_added_runs_follow_the_first_ones_and_the_parting_is_found_again(make_go
     assert json.loads(str(again['meta']))['batches'] == [2, 1, 1]
 
 
+def test_flag_counts_keep_every_model_that_held_one_in_either_capture(make_golden):
+    runs = np.zeros((1, 4, 3, 3))
+    out = make_golden.added_runs(golden(runs, [1], kept=['sink', 'r2']),
+                                 golden(runs, [2], kept=['source', 'sink']))
+    assert json.loads(str(out['meta']))['kept_flag_models'] == ['source', 'sink', 'r2']
+    assert out['flags'][:, 0].tolist() == [[0, 1, 2], [1, 2, 0]]    # 0 where none was held
+
+
 @pytest.mark.parametrize('change, match', [
     (dict(states=6), 'states differs'),
     (dict(world='other'), 'world_name differs'),
-    (dict(flags=1), 'flag counts are not merged'),
 ])
 def test_added_runs_of_another_capture_are_refused(make_golden, change, match):
     runs = np.zeros((1, 4, 3, 3))

@@ -7,7 +7,8 @@ CAPTURES holds one folder per world (capture_worlds.sh's OUT), each with run<k>.
 For each world it writes OUT/<world>.npz and prints a JSON line of its summary; with --add,
 the captures' runs are added after those OUT/<world>.npz holds already (the same world and
 states; the parting steps then found again over every run's float64 prefix, so a parting
-after the prefix is not seen), and meta's `batches` says how many runs each capture gave:
+after the prefix is not seen; the flag counts of every model that held a flag in either),
+and meta's `batches` says how many runs each capture gave:
 
 - meta: a JSON string: the capture header (models, interval_sim, threads, seeds), the
   runs, the parting steps (first state where two runs put a robot more than 1 cm, and more
@@ -109,22 +110,36 @@ def make(world, folder, out_dir, prefix_steps, add=False):
 def added_runs(old, new):
     """The arrays of a world's .npz with the runs of `new` after those of `old`."""
     meta_old, meta_new = (json.loads(str(a['meta'])) for a in (old, new))
-    for key in ('world_name', 'states', 'prefix_steps', 'pose_every', 'position_models'):
+    for key in ('world_name', 'states', 'prefix_steps', 'pose_every', 'position_models',
+                'flag_models'):
         if meta_old[key] != meta_new[key]:
             raise SystemExit('%s: %s differs: %r against %r'
                              % (meta_new['world_name'], key, meta_old[key], meta_new[key]))
-    if old['flags'].shape[2] or new['flags'].shape[2]:
-        raise SystemExit('%s: flag counts are not merged' % meta_new['world_name'])
+    # flags: the columns of the models that ever held one in either capture (a model that
+    # never did in one held none there)
+    kept = [name for name in meta_old['flag_models']
+            if name in meta_old['kept_flag_models'] or name in meta_new['kept_flag_models']]
     arrays = {k: (old[k] if k == 'stat_t_s' else np.concatenate([old[k], new[k]]))
-              for k in old if k != 'meta'}
+              for k in old if k not in ('meta', 'flags')}
+    arrays['flags'] = np.concatenate([_flag_columns(a['flags'], m['kept_flag_models'], kept)
+                                      for a, m in ((old, meta_old), (new, meta_new))])
     prefix = list(arrays['prefix_pose'])
     meta = dict(meta_old, runs=meta_old['runs'] + ['added/' + r for r in meta_new['runs']],
+                kept_flag_models=kept,
                 seeds=meta_old['seeds'] + meta_new['seeds'],
                 batches=meta_old.get('batches', [len(meta_old['runs'])]) + [len(meta_new['runs'])],
                 parting_state={label: swarm_stats.parting_step(prefix, tol_m=tol)
                                for label, tol in (('1cm', 0.01), ('1e-9', 1e-9))})
     arrays['meta'] = np.array(json.dumps(meta))
     return arrays
+
+
+def _flag_columns(flags, names, kept):
+    """flags (runs, states, len(names)) as columns of the models `kept`, 0 for the others."""
+    out = np.zeros(flags.shape[:2] + (len(kept),), flags.dtype)
+    for k, name in enumerate(names):
+        out[:, :, kept.index(name)] = flags[:, :, k]
+    return out
 
 
 def summary_of(world, arrays, path):
