@@ -163,6 +163,23 @@ def test_goto_drives_at_the_c_librarys_hypot_of_the_error(tmp_path):
     assert w.robots[0].command[0] == np.hypot(y, x)
 
 
+def test_a_sensor_keeps_its_angle_as_written_and_a_model_its_pose_normalised(tmp_path):
+    # Stage's Pose::Load calls normalize(a) and drops what it returns: a sensor's (and a
+    # body's origin's) angle stays as written, 330 degrees, whose sine differs from -30
+    # degrees' in the last bit; Model::Load's SetPose normalises the model's own pose
+    p = tmp_path / 'w.world'
+    p.write_text('resolution 0.02\n'
+                 'position( pose [ 0 0 0 330 ] origin [ 0 0 0 270 ] size [ 0.2 0.2 0.2 ]\n'
+                 '  ranger( sensor( pose [ 0 0 0 330 ] range [ 0 2 ] fov 30 samples 1 ) ) )\n')
+    w = load_world(str(p))
+    a = 330 * (math.pi / 180.0)
+    robot = w.robots[0]
+    assert robot.ranger_models[0].sensors[0].pose[3] == a
+    assert robot.model.geom_pose[3] == 270 * (math.pi / 180.0)
+    assert robot.model.pose[3] == stage_normalize(a) != a
+    assert math.sin(a) != math.sin(stage_normalize(a))
+
+
 def test_car_drive_steers_with_angular_z(tmp_path):
     w = room_world(tmp_path, bx=-3.0, drive='car', extra='wheelbase 0.5')
     w.set_command(0, 0.4, 0.0, 0.3)

@@ -79,11 +79,22 @@ def colour(name):
 
 
 def read_pose(wf, e, name, default):
-    """Pose::Load: four values (x, y, z, angle), the angle normalised; default if absent."""
+    """Pose::Load: four values (x, y, z, angle) as written; default if absent. The angle is
+    not normalised: Stage's Load calls normalize(a) and drops what it returns (a sensor at
+    330 degrees keeps 330 degrees, whose cosine and sine differ from -30's in the last
+    bit); only Model::SetPose normalises (set_pose_as_loaded)."""
     v = wf.read_tuple(e, name, 'llla')
     if v is None:
         return default
-    return (v[0], v[1], v[2], stage_normalize(v[3]))
+    return (v[0], v[1], v[2], v[3])
+
+
+def set_pose_as_loaded(current, loaded):
+    """Model::Load's SetPose(loaded): a pose that differs from the current one, with its
+    angle normalised (Stage leaves an equal one as it is)."""
+    if loaded == current:
+        return current
+    return (loaded[0], loaded[1], loaded[2], stage_normalize(loaded[3]))
 
 
 def read_colour(wf, e, default):
@@ -234,7 +245,7 @@ class Model:
         pose = read_pose(wf, e, 'origin', self.geom_pose)
         size = tuple(wf.read_tuple(e, 'size', 'lll') or self.geom_size)
         self.set_geom(pose, size)
-        self.pose = read_pose(wf, e, 'pose', self.pose)
+        self.pose = set_pose_as_loaded(self.pose, read_pose(wf, e, 'pose', self.pose))
         c = read_colour(wf, e, self.color)
         self.color = c if c is not None else (rng.random(), rng.random(), rng.random(), 1.0)
         if wf.read_int(e, 'noblocks', 0) and self.has_default_block:
