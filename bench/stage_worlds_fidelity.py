@@ -95,7 +95,7 @@ def check(world, folder, seconds, seed=None, race=True):
             continue
         real = data[key][:, :len(times)].astype(float)
         lo, hi = real.min(axis=0), real.max(axis=0)
-        inside = (values >= lo - 1e-6) & (values <= hi + 1e-6)
+        inside = swarm_stats.within_runs(values, real)
         stats[name] = (int(inside.sum()), len(inside), float(values[-1]), float(lo[-1]),
                        float(hi[-1]))
         if name == 'delivered_per_sink':     # deliveries come late: the whole course

@@ -123,3 +123,11 @@ def test_reader_parses_records_and_drops_a_cut_record():
 def test_reader_rejects_bad_files(data):
     with pytest.raises(ValueError):
         stage_capture_file.parse(data)
+
+
+def test_within_runs_takes_the_runs_min_to_max_at_each_time():
+    runs = np.array([[0.0, 1.0, 2.0], [1.0, 1.0, 4.0]], np.float32)
+    values = np.array([0.5, 1.0 + 5e-7, 4.1])
+    assert swarm_stats.within_runs(values, runs).tolist() == [True, True, False]
+    with pytest.raises(ValueError):
+        swarm_stats.within_runs(values[:2], runs)

@@ -20,6 +20,7 @@ import numpy as np
 
 WINDOW_S = 1.0    # s: the "last second" of the moving share and the mean speed
 MOVED_M = 0.01    # m: a robot that went further than this in the window moved
+RANGE_TOL = 1e-6  # a statistic this close to the runs' min or max is within them (float32)
 
 
 def _check_poses(t_s, pose):
@@ -147,3 +148,14 @@ def parting_step(runs, tol_m=0.01):
             apart = np.maximum(apart, d.max(axis=1))
     over = np.nonzero(apart > tol_m)[0]
     return int(over[0]) if len(over) else None
+
+
+def within_runs(values, runs, tol=RANGE_TOL):
+    """Per time, whether a statistic's values (T,) lie within the min..max of several runs'
+    values at that time (runs: (R, T)), tol either side."""
+    runs = np.asarray(runs, dtype=np.float64)
+    values = np.asarray(values, dtype=np.float64)
+    if runs.ndim != 2 or values.shape != runs.shape[1:]:
+        raise ValueError('values (T,) and runs (R, T) expected, got %r and %r'
+                         % (values.shape, runs.shape))
+    return (values >= runs.min(axis=0) - tol) & (values <= runs.max(axis=0) + tol)
