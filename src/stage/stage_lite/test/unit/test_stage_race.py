@@ -114,15 +114,7 @@ def test_a_stale_cast_reads_the_robots_pose_before_the_move(tmp_path):
 
 
 def run(path, seed, steps=40):
-    w = load_world(path, seed=seed, stageros=False)
-    stale = []
-    draw = w.race.stale
-    w.race.stale = lambda *a: stale.append(draw(*a)) or stale[-1]
-    poses = []
-    for _ in range(steps):
-        w.step()
-        poses.append(w.state.pose.copy())
-    return np.array(poses), stale
+    return run_of(path, steps, seed=seed)
 
 
 def test_a_threaded_world_is_one_run_per_seed(tmp_path):
@@ -136,3 +128,42 @@ def test_a_threaded_world_is_one_run_per_seed(tmp_path):
     other, stale_other = run(path, 5)
     assert other.tobytes() != poses.tobytes()
     assert any(a.tobytes() != b.tobytes() for a, b in zip(stale, stale_other, strict=False))
+
+
+def test_a_run_number_draws_what_stage_takes_from_the_clock_and_keeps_random(tmp_path):
+    path = swarm(tmp_path, 'threads 4')
+
+    def loaded(**kw):
+        w = load_world(path, stageros=False, **kw)
+        return w, w.random.block(8).tolist(), w.rand48.drand48()
+
+    plain, plain_random, plain_drand48 = loaded()
+    first, first_random, first_drand48 = loaded(run=1)
+    second, second_random, second_drand48 = loaded(run=2)
+    # random() is an unseeded Stage's in every run (srandom(1)); drand48 is the clock's
+    assert first_random == second_random == plain_random
+    assert len({plain_drand48, first_drand48, second_drand48}) == 3
+    assert (first.clock_seed, second.clock_seed, plain.clock_seed) == (1, 2, None)
+    # the race is the run's: two runs differ, one run repeats itself
+    poses, stale = run_of(path, run=1)
+    again, stale_again = run_of(path, run=1)
+    other, stale_other = run_of(path, run=2)
+    assert poses.tobytes() == again.tobytes()
+    assert all(a.tobytes() == b.tobytes() for a, b in zip(stale, stale_again, strict=True))
+    assert any(a.tobytes() != b.tobytes() for a, b in zip(stale, stale_other, strict=False))
+    # a seed moves random() itself, which no run of the real Stage does
+    seeded = load_world(path, seed=2, stageros=False)
+    assert seeded.random.block(8).tolist() != plain_random
+
+
+def run_of(path, steps=40, **kw):
+    """run() with load_world's keywords."""
+    w = load_world(path, stageros=False, **kw)
+    stale = []
+    draw = w.race.stale
+    w.race.stale = lambda *a: stale.append(draw(*a)) or stale[-1]
+    poses = []
+    for _ in range(steps):
+        w.step()
+        poses.append(w.state.pose.copy())
+    return np.array(poses), stale

@@ -131,3 +131,14 @@ def test_within_runs_takes_the_runs_min_to_max_at_each_time():
     assert swarm_stats.within_runs(values, runs).tolist() == [True, True, False]
     with pytest.raises(ValueError):
         swarm_stats.within_runs(values[:2], runs)
+
+
+def test_each_run_is_held_to_the_other_runs_range():
+    runs = np.array([[0.0, 1.0, 2.0, 3.0],
+                     [0.0, 2.0, 3.0, 4.0],
+                     [0.0, 1.5, 2.5, 9.0]])
+    # run 0 is below the others at times 1-3; run 1 above at 1-2, inside at 3 (3..9);
+    # run 2 inside at 1-2, above at 3
+    assert swarm_stats.runs_within_the_others(runs).tolist() == [1, 2, 3]
+    with pytest.raises(ValueError):
+        swarm_stats.runs_within_the_others(runs[:1])

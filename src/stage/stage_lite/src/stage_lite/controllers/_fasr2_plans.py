@@ -80,7 +80,7 @@ class Shared:
     def __init__(self, world, colours):
         if not colours:
             raise ValueError('fasr2 needs at least one task colour: ctrl "fasr2 red green ..."')
-        world.srandom(world.seed if world.seed is not None else 1)
+        world.srandom(world.clock_seed if world.clock_seed is not None else 1)
         self.tasks = []
         for colour in colours:
             ends = []

@@ -6,10 +6,11 @@ planner (_astar.py) finds over a 32 x 32 grid of the world's `cave` model, and g
 
 Rule for rule as Stage's:
 - the first robot's Init reads the tasks and calls srandom (Stage: srandom(time(NULL)); here
-  the world's seed, or 1 unseeded); each robot then picks its task with random() % tasks,
-  takes the source's colour, subscribes its laser (`ranger:1`) and itself, and reads
-  everything in its position update; its sonar (`ranger:0`) and fiducial finder (its first
-  unused `fiducial`) are subscribed only while it needs them;
+  the run's number or the world's seed, or 1 unseeded: World.clock_seed); each robot then
+  picks its task with random() % tasks, takes the source's colour, subscribes its laser
+  (`ranger:1`) and itself, and reads everything in its position update; its sonar
+  (`ranger:0`) and fiducial finder (its first unused `fiducial`) are subscribed only while
+  it needs them;
 - the grid (made once): `cave` rasterized 32 x 32 over its size, an empty cell costs 1, a
   cell an outline passes 9 (blocked); a plan from the robot's cell to its goal's cell is
   kept for that pair of cells and shared by all robots; its nodes are the path's cell

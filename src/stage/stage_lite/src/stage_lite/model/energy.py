@@ -134,10 +134,9 @@ class PowerPack:
 
     def dissipate(self, joules):
         """Loses energy as work or heat: all of it from an infinite supply, else no more than
-        is stored."""
-        amount = joules if self.stored < 0 else min(self.stored, joules)
-        self.subtract(amount)
-        self.dissipated += amount
+        is stored (the step's own rule, _dissipate, on this pack's row)."""
+        _dissipate(np.array([self._row], np.int64), np.array([float(joules)]), 0, 1,
+                   self._values, 1.0)
 
 
 def load_energy(model, wf, entity):

@@ -117,6 +117,12 @@ class WorldApi:
         """The world's seed (load_world's), None if it was given none."""
         return self._world.seed
 
+    @property
+    def clock_seed(self):
+        """What Stage seeds from the clock (srand48(time), fasr2's srandom(time)): the run's
+        number (load_world's run), else the world's seed; None if it was given neither."""
+        return self._world.clock_seed
+
     def drand48(self):
         return self._world.rand48.drand48()
 

@@ -63,10 +63,14 @@ class World(RangerCasts, RobotByRobot):
     """A loaded world. Use load_world()."""
 
     def __init__(self, path, seed=None, stageros=True, ctrlargs='', model_order=None,
-                 race=True):
+                 race=True, run=None):
         """seed: random()'s srandom and drand48's srand48 (default: an unseeded process's,
         srandom(1) and glibc's zero drand48 state), the load-time draws' generator and
         the worker-thread race's (race.py; seed None draws as seed 1);
+        run: one of the runs the real Stage makes of the world: what Stage draws from the
+        clock (its srand48(time) at start, so the load-time draws and drand48; fasr2's
+        srandom(time)) and its worker threads' race, from the number `run`; random()
+        stays seed's (an unseeded Stage's srandom(1) without it), as in every Stage run;
         stageros: subscribe every robot and its rangers as stageros does (else only what
         the controllers subscribe, as Stage's `stage`); ctrlargs: `stage -a`'s argument
         string, World::ctrlargs, given to every controller; model_order: the models'
@@ -77,9 +81,11 @@ class World(RangerCasts, RobotByRobot):
         race: with several worker threads, model Stage's race (race.py; False: every ranger
         casts after the moves)."""
         self.path = path
+        # what Stage seeds from the clock: the run's number, else the world's seed
+        self.clock_seed = seed if run is None else int(run)
         # one generator for what loading draws (random colours, odometry errors)
-        self._rng = np.random.default_rng(seed)
-        self.rand48 = Rand48(seed)     # drawn from while loading too (position models)
+        self._rng = np.random.default_rng(self.clock_seed)
+        self.rand48 = Rand48(self.clock_seed)     # drawn from while loading too (position models)
         loaded = world_load.load(path, self._rng, self.rand48)
         self.resolution_m = loaded.resolution_m
         self.ppm = loaded.ppm
@@ -154,7 +160,7 @@ class World(RangerCasts, RobotByRobot):
         # its own (the same run: the tests compare the two)
         self.batches = True
         self._prepare_rays()
-        self.race = self._worker_race(seed) if race else None   # who casts before the moves
+        self.race = self._worker_race(self.clock_seed) if race else None  # who casts first
         # the fiducial finders' and blobfinders' world: the fiducial-bearing models, the rays
         self.fiducial_index = FiducialIndex(self.models, rank=self._rank.__getitem__)
         if self.motion is not None:
@@ -418,7 +424,8 @@ def finite_float(name, value):
     return float(value)
 
 
-def load_world(path, seed=None, stageros=True, ctrlargs='', model_order=None, race=True):
+def load_world(path, seed=None, stageros=True, ctrlargs='', model_order=None, race=True,
+               run=None):
     """Parses the world file (includes, bitmaps) into a World and starts its controllers
     (see World); raises WorldError."""
     if not os.path.isfile(path):
@@ -428,7 +435,7 @@ def load_world(path, seed=None, stageros=True, ctrlargs='', model_order=None, ra
     collecting = gc.isenabled()
     gc.disable()
     try:
-        return World(path, seed, stageros, ctrlargs, model_order, race)
+        return World(path, seed, stageros, ctrlargs, model_order, race, run)
     finally:
         if collecting:
             gc.enable()

@@ -159,3 +159,14 @@ def within_runs(values, runs, tol=RANGE_TOL):
         raise ValueError('values (T,) and runs (R, T) expected, got %r and %r'
                          % (values.shape, runs.shape))
     return (values >= runs.min(axis=0) - tol) & (values <= runs.max(axis=0) + tol)
+
+
+def runs_within_the_others(runs, tol=RANGE_TOL):
+    """Per run of several (runs: (R, T), R >= 2), at how many times its statistic lies
+    within the other runs' min..max: how well a run of the real program fits its own
+    spread, the yardstick for a simulator held to the same runs."""
+    runs = np.asarray(runs, dtype=np.float64)
+    if runs.ndim != 2 or runs.shape[0] < 2:
+        raise ValueError('at least two runs (R, T) expected, got %r' % (runs.shape,))
+    return np.array([int(within_runs(runs[r], np.delete(runs, r, axis=0), tol).sum())
+                     for r in range(runs.shape[0])])

@@ -5,7 +5,13 @@
 // Loading and stepping are Stage's own: Stg::Init (which seeds drand48 from the wall
 // clock, as `stage` does), World(path) + World::Load (which loads the `ctrl` plugins and
 // runs their Init), then World::Update() per step with the world file's `threads`.
-// The only addition is a read of the models' state between two updates.
+// The only addition is a read of the models' state between two updates, and, in the
+// header, every model's name in World::models' order: the models' addresses, which order
+// the controllers' Init, the moves and a fiducial finder's readings. That order is the
+// heap's, so it follows the allocations made before loading, the command line's too: a
+// world file or output path too long for a short string (over 15 characters) takes a
+// heap block and moves the models. Run a capture and the run it is compared with the same
+// way (capture_worlds.sh does) and read the order from here.
 //
 // Output (little endian):
 //   8 bytes  magic "STGCAP1\0"
@@ -17,6 +23,7 @@
 //     uint32   flag count for each flag model
 // The record count follows from the file length, so a cut-short run is still readable.
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -67,6 +74,23 @@ void Collect(Stg::Model *mod, int depth, std::vector<Stg::Model *> &positions,
     flagged.push_back(mod);
   for (Stg::Model *child : mod->GetChildren())
     Collect(child, depth + 1, positions, flagged);
+}
+
+// Every model but the World's own ground, in World::models' order: by address (a
+// std::set<Model *>), read after loading (no allocation before it).
+std::vector<Stg::Model *> ByAddress(Stg::World *world)
+{
+  std::vector<Stg::Model *> all, todo(world->GetChildren().begin(), world->GetChildren().end());
+  while (!todo.empty()) {
+    Stg::Model *mod = todo.back();
+    todo.pop_back();
+    if (strcmp(mod->Token(), "_ground_model") != 0)
+      all.push_back(mod);
+    for (Stg::Model *child : mod->GetChildren())
+      todo.push_back(child);
+  }
+  std::sort(all.begin(), all.end());
+  return all;
 }
 
 std::string NameList(const std::vector<Stg::Model *> &mods)
@@ -172,6 +196,7 @@ int main(int argc, char *argv[])
   header += ", \"position_models\": " + NameList(positions);
   header += ", \"flag_models\": " + NameList(flagged);
   header += ", \"flag_model_poses\": " + PoseList(flagged);
+  header += ", \"model_order\": " + NameList(ByAddress(world));
   header += "}";
 
   fwrite("STGCAP1\0", 1, 8, out);
