@@ -71,3 +71,14 @@ def test_added_runs_of_another_capture_are_refused(make_golden, change, match):
     runs = np.zeros((1, 4, 3, 3))
     with pytest.raises(SystemExit, match=match):
         make_golden.added_runs(golden(runs, [1]), golden(runs, [2], **change))
+
+
+def test_runs_of_another_model_order_are_named(make_golden, capsys):
+    order = ['cave', 'r0', 'r1']
+    headers = [dict(model_order=order), dict(model_order=order),
+               dict(model_order=['r0', 'cave', 'r1']), dict()]
+    assert make_golden.same_model_order('w', ['run1', 'run2', 'run3', 'run4'], headers) is False
+    assert "w: the model order of run3 differs from run1's" in capsys.readouterr().err
+    # a capture made before stage_capture wrote the order says nothing either way
+    assert make_golden.same_model_order('w', ['run1', 'run4'], [headers[0], headers[3]])
+    assert capsys.readouterr().err == ''

@@ -59,9 +59,22 @@ def places(header):
     return {k: np.array(v) for k, v in out.items()}
 
 
+def same_model_order(world, labels, headers):
+    """Warns (on stderr) of runs whose model order differs from the first's: a command line
+    of another length moves Stage's models (README, "The model order of each world")."""
+    orders = [h.get('model_order') for h in headers]
+    odd = [label for label, order in zip(labels, orders, strict=True)
+           if order is not None and orders[0] is not None and order != orders[0]]
+    if odd:
+        print('%s: the model order of %s differs from %s\'s' % (world, ', '.join(odd), labels[0]),
+              file=sys.stderr)
+    return not odd
+
+
 def make(world, folder, out_dir, prefix_steps, add=False):
     paths, runs, n = load_runs(folder)
     header = runs[0][0]
+    same_model_order(world, [os.path.basename(p) for p in paths], [h for h, _ in runs])
     t_s = runs[0][1]['t_s'][:n]
     poses = [a['pose'][:n] for _, a in runs]
     n_robots = poses[0].shape[1]
@@ -115,6 +128,8 @@ def added_runs(old, new):
         if meta_old[key] != meta_new[key]:
             raise SystemExit('%s: %s differs: %r against %r'
                              % (meta_new['world_name'], key, meta_old[key], meta_new[key]))
+    same_model_order(meta_new['world_name'], ['the npz', 'the added capture'],
+                     [meta_old, meta_new])
     # flags: the columns of the models that ever held one in either capture (a model that
     # never did in one held none there)
     kept = [name for name in meta_old['flag_models']
