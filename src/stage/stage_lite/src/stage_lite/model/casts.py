@@ -18,6 +18,30 @@ from .ranger import Ranger
 
 
 @njit(cache=True)
+def _sorted_due(due, n):
+    """np.sort(due) of sensor indices below n (a counting sort), and per due sensor the
+    place of its last and of its first copy there (searchsorted right - 1, and left)."""
+    count = np.zeros(n, np.int64)
+    for i in range(due.shape[0]):
+        count[due[i]] += 1
+    start = np.empty(n, np.int64)
+    k = 0
+    for v in range(n):
+        start[v] = k
+        k += count[v]
+    positions = np.empty(due.shape[0], np.int64)
+    for v in range(n):
+        for j in range(count[v]):
+            positions[start[v] + j] = v
+    last = np.empty(due.shape[0], np.int64)
+    first = np.empty(due.shape[0], np.int64)
+    for i in range(due.shape[0]):
+        first[i] = start[due[i]]
+        last[i] = start[due[i]] + count[due[i]] - 1
+    return positions, last, first
+
+
+@njit(cache=True)
 def _ranges_of(starts, ends):
     """The integers starts[0]..ends[0]-1, starts[1]..ends[1]-1, ... in one int64 array."""
     total = 0
@@ -198,7 +222,10 @@ class RangerCasts:
             layer = (self.updates + 1) % 2
         due = self._all_sensors if due is None else np.asarray(due, np.int64)
         every = len(due) == len(self._sensors)
-        positions = self._all_sensors if every else np.sort(due)
+        if every:
+            positions = self._all_sensors
+        else:
+            positions, last, first = _sorted_due(due, len(self._sensors))
         tables = self._rays if every else self._subset_tables(positions)
         origins = tables['origins']
         if self.motion is not None:
@@ -210,7 +237,7 @@ class RangerCasts:
         stale_rows = None
         if stale is not None and stale.any():
             stale_rows = np.zeros(len(positions), np.bool_)
-            stale_rows[np.searchsorted(positions, due[stale])] = True
+            stale_rows[due[stale] if every else first[stale]] = True
             self._stale_origins(positions, stale_rows, before, origins)
         rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
                                    tables['rmax'], tables['ray_class'], tables['root'], layer)
@@ -218,7 +245,7 @@ class RangerCasts:
         intensities = np.where(hit >= 0, rr[np.maximum(hit, 0)], 0.0)
         offsets = tables['offsets']
         # each due sensor's row of the cast (its last, as a dict of them would say)
-        rows = due if every else np.searchsorted(positions, due, side='right') - 1
+        rows = due if every else last
         self._draw_noise(rng, offsets, rows, positions, layer, None if stale_rows is None
                          else np.where(stale_rows[:, None], origins, np.nan))
         if every:

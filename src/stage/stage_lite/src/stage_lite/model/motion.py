@@ -717,8 +717,11 @@ class Motion:
                         *self._grid(), self.vx[t], self.vy[t], *self._cells())
         if self._side_thread is None:
             self._side_thread = ThreadPoolExecutor(1, thread_name_prefix='stage_moves')
-        other = self._side_thread.submit(move_side, 1)
-        move_side(0)
+        # the thread starts some 70 us late (its wake-up): it takes the side with fewer
+        # robots (the sides commute, so either may run anywhere)
+        small = 0 if self.side_len[0] < self.side_len[1] else 1
+        other = self._side_thread.submit(move_side, small)
+        move_side(1 - small)
         other.result()
         unpin(pinned, sp.reg_dyn, sp.reg_dyncount, sp.free_state, sp.page_free)
         return self.rest[:k]

@@ -59,6 +59,8 @@ position( pose [ 3 0 0 0 ] size [ 0.3 0.3 0.2 ] )
 
 def warm():
     """Loads and steps the world: every kernel compiled (or loaded from the cache)."""
+    import numpy as np
+
     from .space import PARALLEL_RAYS
     from .world import load_world
     with tempfile.TemporaryDirectory() as tmp:
@@ -73,6 +75,7 @@ def warm():
             world.step()
         for robot in (world.robots[0], world.robots[2]):   # the threads', then this one's
             world.scan_from(robot.rangers[0], robot.model.pose)
+        world.cast_rays(np.array([1, 0], np.int64))    # some of the sensors (Stage's `stage`)
         world.occupancy()
         warm_sensors(world)
         warm_chargers(world)
