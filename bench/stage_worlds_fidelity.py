@@ -1,7 +1,7 @@
 """stage_lite on Stage 4.3.0's own worlds, held to the real Stage's runs of them, no ROS.
 
 Run: `./ws bench stage_worlds_fidelity --worlds STAGE/worlds [--seconds S] [--seed N ..]
-[--runs N]
+[--runs N] [--own-seeds]
 [WORLD ...]` with STAGE/worlds a copy of Stage v4.3.0's worlds/ folder (GPL-2, not in this
 repository: see src/stage/stage_lite/test/golden/stage_worlds/README.md); without it the
 bench says so and does nothing. For each world with golden data (stage_worlds/<world>.npz,
@@ -25,6 +25,9 @@ simulated seconds (default: as long as the real runs, at most 60 s), and prints 
 With --runs N, stage_lite makes N runs of each world as the real Stage makes its runs
 (load_world's run: what Stage draws from the clock and its race, random() left unseeded),
 and a last row gives, per statistic, the median and least of its counts beside a real run's.
+With --own-seeds, stage_lite also runs with each real run's clock second (the second Stage
+seeded drand48 with, which the capture recorded: load_world's run) and a row gives the state
+at which it first differs from that run.
 With --no-race, every ranger casts after the moves (stage_lite without its model of Stage's
 worker-thread race, race.py), for a side-by-side comparison.
 """
@@ -60,6 +63,35 @@ def runs_part(prefix):
     parts = [s for s in (first_difference(prefix[0], prefix[r]) for r in range(1, len(prefix)))
              if s is not None]
     return min(parts) if parts else None
+
+
+def own_seed_partings(world, folder, race=True):
+    """Per real run, the state at which stage_lite, run with that run's clock second
+    (load_world's run: Stage's srand48(time(NULL)), and fasr2's srandom), first differs
+    from it (first_difference), over the golden data's float64 prefix."""
+    import numpy as np
+    from stage_lite.model.world import load_world
+    data = np.load(os.path.join(GOLDEN, world + '.npz'))
+    meta = json.loads(str(data['meta']))
+    prefix = data['prefix_pose']
+    with open(os.path.join(GOLDEN, 'model_order.json')) as f:
+        order = json.load(f)[world]
+    path = os.path.join(folder, FILES.get(world, world + '.world'))
+    here = os.getcwd()
+    os.chdir(os.path.dirname(path))
+    try:
+        out = []
+        for r, second in enumerate(meta['seeds']):
+            w = load_world(os.path.basename(path), stageros=False, model_order=order,
+                           race=race, run=second)
+            poses = [[x.pose for x in w.robots]]
+            for _ in range(prefix.shape[1] - 1):
+                w.step()
+                poses.append([x.pose for x in w.robots])
+            out.append(first_difference(np.array(poses), prefix[r]))
+        return out
+    finally:
+        os.chdir(here)
 
 
 def check(world, folder, seconds, seed=None, race=True, run=None):
@@ -134,6 +166,8 @@ def main(argv=None):
                         help="the worlds' seed; several: a run each (default: none)")
     parser.add_argument('--runs', type=int, default=0,
                         help="stage_lite's runs 1..N as the real Stage's (load_world's run)")
+    parser.add_argument('--own-seeds', action='store_true',
+                        help="also run stage_lite with each real run's clock second")
     parser.add_argument('--no-race', action='store_true',
                         help="every ranger casts after the moves (no model of Stage's race)")
     parser.add_argument('names', nargs='*', help='worlds (default: every golden one)')
@@ -171,6 +205,10 @@ def main(argv=None):
                 counts.setdefault(name, []).append(v[0])
         if len(variants) > 1 and counts:
             print_runs(world, len(variants), counts, r['stats'])
+        if args.own_seeds:
+            parts = own_seed_partings(world, args.worlds, race=not args.no_race)
+            print('| %s, each run\'s clock second | | | %s | | |' % (world, ', '.join(
+                'never' if p is None else str(p) for p in parts)), flush=True)
 
 
 def print_runs(world, n, counts, stats):

@@ -179,3 +179,21 @@ def test_a_scan_without_noise_still_moves_the_stream_as_stages_does():
     reference = Random()
     _stage_noise(reference, [], [1.0, 8.0, 2.0], 8.0, 0.0, 0.0)
     assert stream.random() == reference.random()
+
+
+def test_a_random_colour_takes_six_drand48_draws_and_keeps_the_last_three(tmp_path):
+    # Model::Load draws Color(drand48(), drand48(), drand48()), then Color::Load reads the
+    # same `color "random"` and draws r, g, b again; a position model first draws its
+    # odometry error (4) in its constructor
+    from stage_lite.model.world import load_world
+    path = tmp_path / 'colours.world'
+    path.write_text('position( name "p" pose [ 0 0 0 0 ] size [ 0.3 0.3 0.3 ] color "random" )\n'
+                    'model( name "m" pose [ 2 0 0 0 ] size [ 0.3 0.3 0.3 ] color "random" )\n'
+                    'model( name "red" pose [ 4 0 0 0 ] size [ 0.3 0.3 0.3 ] color "red" )\n')
+    w = load_world(str(path), seed=7, stageros=False)
+    ref = Rand48(7)
+    d = [ref.drand48() for _ in range(4 + 6 + 6)]
+    colours = {m.token: m.color for m in w.models}
+    assert colours['p'] == (d[7], d[8], d[9], 1.0)
+    assert colours['m'] == (d[13], d[14], d[15], 1.0)
+    assert w.rand48.drand48() == ref.drand48()      # and the stream goes on from there

@@ -115,6 +115,18 @@ def read_colour(wf, e, default):
     return tuple(rgba) if rgba is not None else default
 
 
+def random_colour(draws):
+    """`color "random"`, as Stage draws it: Model::Load makes Color(drand48(), drand48(),
+    drand48()), then Color::Load reads the same property and draws r, g and b again; six
+    drand48() draws, the last three the colour (draws: world_load.LoadDraws)."""
+    for _ in range(3):
+        draws.drand48()
+    r = draws.drand48()
+    g = draws.drand48()
+    b = draws.drand48()
+    return (r, g, b, 1.0)
+
+
 class Model:
     """A Stage model: the tree, the pose, the geometry and the body (blocks)."""
 
@@ -247,7 +259,7 @@ class Model:
         self.set_geom(pose, size)
         self.pose = set_pose_as_loaded(self.pose, read_pose(wf, e, 'pose', self.pose))
         c = read_colour(wf, e, self.color)
-        self.color = c if c is not None else (rng.random(), rng.random(), rng.random(), 1.0)
+        self.color = c if c is not None else random_colour(rng)
         if wf.read_int(e, 'noblocks', 0) and self.has_default_block:
             self.blocks = []
             self.has_default_block = False

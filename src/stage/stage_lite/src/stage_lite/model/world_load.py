@@ -66,11 +66,27 @@ class LoadedWorld:
     show_clock_interval: int = 100
 
 
+class LoadDraws:
+    """What loading draws at random: drand48() from the world's stream (glibc_random.Rand48)
+    as Stage draws it (random colours, odometry errors), or from numpy's generator without
+    one; random() numpy's."""
+
+    def __init__(self, rng, rand48=None):
+        self._rng = rng
+        self._rand48 = rand48
+
+    def random(self):
+        return self._rng.random()
+
+    def drand48(self):
+        return self._rng.random() if self._rand48 is None else self._rand48.drand48()
+
+
 def load(path, rng, rand48=None):
-    """The world file at path, loaded (WorldError for what Stage refuses); rng draws what
-    Stage draws at random while loading (`color "random"`), rand48 (glibc_random.Rand48,
-    the world's drand48 stream) the position models' odometry errors as their constructors
-    draw them (else rng draws those)."""
+    """The world file at path, loaded (WorldError for what Stage refuses); rand48
+    (glibc_random.Rand48, the world's drand48 stream) draws what Stage draws from drand48()
+    while loading (the position models' odometry errors as their constructors draw them,
+    `color "random"` as Model::Load does), else rng (numpy's) draws those."""
     wf = Worldfile(path)
     resolution_m = wf.read_float(0, 'resolution', 0.02)
     if not resolution_m > 0:
@@ -108,6 +124,7 @@ def _load_models(wf, path, rng, rand48):
     models = []
     by_entity = {}
     counts = {'model': 1}   # Stage's own ground model is model:0: a world's first is model:1
+    draws = LoadDraws(rng, rand48)
     for ent in wf.entities[1:]:
         parent = by_entity.get(ent.parent)
         if ent.kind == 'window':
@@ -127,7 +144,7 @@ def _load_models(wf, path, rng, rand48):
                                              ent.index, counts)
             if rand48 is not None and isinstance(m, Position):
                 m.draw_integration_error(rand48)
-            m.load(wf, rng)
+            m.load(wf, draws)
             if ent.kind not in SIMULATED_TYPES:
                 wf.warnings.append('%s:%d: %s models are not simulated here; loaded as a'
                                    ' body' % (ent.path, ent.line, ent.kind))
