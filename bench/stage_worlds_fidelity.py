@@ -180,6 +180,8 @@ def main(argv=None):
     with open(os.path.join(GOLDEN, 'model_order.json')) as f:
         known = sorted(json.load(f))
     names = args.names or known
+    if args.runs < 0:
+        sys.exit('--runs must be 0 or more')
     unknown = sorted(set(names) - set(known))
     if unknown:
         sys.exit('unknown world %s (golden ones: %s)' % (', '.join(unknown), ', '.join(known)))
@@ -187,8 +189,6 @@ def main(argv=None):
           ' run) | statistics within the real runs\' range (times; a real run within the'
           ' others\': median, least) | run: sim s, wall s |')
     print('|---|---|---|---|---|---|')
-    if args.runs < 0:
-        sys.exit('--runs must be 0 or more')
     variants = ([('run %d' % k, dict(run=k)) for k in range(1, args.runs + 1)] if args.runs
                 else [('' if seed is None else 'seed %d' % seed, dict(seed=seed))
                       for seed in args.seed])
