@@ -96,9 +96,9 @@ class Blobfinder(models.Blobfinder):
         self.scan_width, self.scan_height = DEFAULT_IMAGE
         self.blobs = []
 
-    def load(self, wf, rng):
+    def load(self, wf, rand48):
         """ModelBlobfinder::Load: Model::Load, then the blobfinder's own properties."""
-        super().load(wf, rng)
+        super().load(wf, rand48)
         e = self.entity
         image = wf.read_tuple(e, 'image', 'ii')
         if image is not None:

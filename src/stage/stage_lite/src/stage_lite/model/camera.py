@@ -48,9 +48,9 @@ class Camera(Model):
         self.problems = []      # (path, line, what): why this camera makes no frame
         self.where = ('?', 0)   # its entity's file and line
 
-    def load(self, wf, rng):
+    def load(self, wf, rand48):
         """Model::Load, then ModelCamera::Load's four tuples ('ff', 'll', 'ff', 'ii')."""
-        super().load(wf, rng)
+        super().load(wf, rand48)
         e = self.entity
         self.where = (wf.entities[e].path, wf.entities[e].line)
         self.fov_deg = tuple(wf.read_tuple(e, 'fov', 'ff') or self.fov_deg)

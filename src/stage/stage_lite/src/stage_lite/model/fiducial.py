@@ -225,9 +225,9 @@ class Fiducial(models.Fiducial):
         # (update_all's _Seen, this finder's place in it) while the readings are not made
         self._seen = None
 
-    def load(self, wf, rng):
+    def load(self, wf, rand48):
         """ModelFiducial::Load: Model::Load, then the finder's own properties."""
-        super().load(wf, rng)
+        super().load(wf, rand48)
         e = self.entity
         self.range_min = wf.read_length(e, 'range_min', self.range_min)
         self.range_max = wf.read_length(e, 'range_max', self.range_max)

@@ -115,15 +115,15 @@ def read_colour(wf, e, default):
     return tuple(rgba) if rgba is not None else default
 
 
-def random_colour(draws):
+def random_colour(rand48):
     """`color "random"`, as Stage draws it: Model::Load makes Color(drand48(), drand48(),
     drand48()), then Color::Load reads the same property and draws r, g and b again; six
-    drand48() draws, the last three the colour (draws: world_load.LoadDraws)."""
+    drand48() draws (rand48: glibc_random.Rand48), the last three the colour."""
     for _ in range(3):
-        draws.drand48()
-    r = draws.drand48()
-    g = draws.drand48()
-    b = draws.drand48()
+        rand48.drand48()
+    r = rand48.drand48()
+    g = rand48.drand48()
+    b = rand48.drand48()
     return (r, g, b, 1.0)
 
 
@@ -240,7 +240,7 @@ class Model:
         return block.zmin + gz, block.zmax + gz
 
     # ---- Model::Load -------------------------------------------------------------------
-    def load(self, wf, rng):
+    def load(self, wf, rand48):
         e = self.entity
         for name in ('event_queue', 'debug', 'gripper_return',
                      'gui_nose', 'gui_grid', 'gui_outline', 'gui_move', 'map_resolution',
@@ -259,7 +259,7 @@ class Model:
         self.set_geom(pose, size)
         self.pose = set_pose_as_loaded(self.pose, read_pose(wf, e, 'pose', self.pose))
         c = read_colour(wf, e, self.color)
-        self.color = c if c is not None else random_colour(rng)
+        self.color = c if c is not None else random_colour(rand48)
         if wf.read_int(e, 'noblocks', 0) and self.has_default_block:
             self.blocks = []
             self.has_default_block = False

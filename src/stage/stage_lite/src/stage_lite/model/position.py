@@ -57,8 +57,8 @@ class Position(Model):
         a, z, y, x = (rand48.drand48() * m - m / 2.0 for m in INTEGRATION_ERROR_MAX[::-1])
         self.integration_error = (x, y, z, a)
 
-    def load(self, wf, rng):
-        super().load(wf, rng)
+    def load(self, wf, rand48):
+        super().load(wf, rand48)
         e = self.entity
         v = read_pose(wf, e, 'velocity', None)
         if v is not None:
@@ -77,10 +77,8 @@ class Position(Model):
         gpose = self.global_pose()
         self.est_origin = read_pose(wf, e, 'localization_origin', gpose)
         err = read_pose(wf, e, 'odom_error', None)
-        if err is None:
-            err = self.integration_error or tuple(rng.random() * m - m / 2.0
-                                                  for m in INTEGRATION_ERROR_MAX)
-        self.integration_error = err
+        if err is not None:          # else the constructor's draws (draw_integration_error)
+            self.integration_error = err
         if wf.exists(e, 'localization'):
             loc = wf.read_string(e, 'localization', 'gps')
             if loc not in ('gps', 'odom'):

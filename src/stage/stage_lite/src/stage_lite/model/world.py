@@ -65,10 +65,10 @@ class World(RangerCasts, RobotByRobot):
     def __init__(self, path, seed=None, stageros=True, ctrlargs='', model_order=None,
                  race=True, run=None):
         """seed: random()'s srandom and drand48's srand48 (default: an unseeded process's,
-        srandom(1) and glibc's zero drand48 state), the load-time draws' generator and
-        the worker-thread race's (race.py; seed None draws as seed 1);
+        srandom(1) and glibc's zero drand48 state; loading draws from drand48 too) and the
+        worker-thread race's generator (race.py; seed None draws as seed 1);
         run: one of the runs the real Stage makes of the world: what Stage draws from the
-        clock (its srand48(time) at start, so the load-time draws and drand48; fasr2's
+        clock (its srand48(time) at start, so drand48, loading's draws included; fasr2's
         srandom(time)) and its worker threads' race, from the number `run`; random()
         stays seed's (an unseeded Stage's srandom(1) without it), as in every Stage run;
         stageros: subscribe every robot and its rangers as stageros does (else only what
@@ -83,10 +83,9 @@ class World(RangerCasts, RobotByRobot):
         self.path = path
         # what Stage seeds from the clock: the run's number, else the world's seed
         self.clock_seed = seed if run is None else int(run)
-        # one generator for what loading draws (random colours, odometry errors)
-        self._rng = np.random.default_rng(self.clock_seed)
-        self.rand48 = Rand48(self.clock_seed)     # drawn from while loading too (position models)
-        loaded = world_load.load(path, self._rng, self.rand48)
+        # drand48(), drawn from while loading too (odometry errors, random colours)
+        self.rand48 = Rand48(self.clock_seed)
+        loaded = world_load.load(path, self.rand48)
         self.resolution_m = loaded.resolution_m
         self.ppm = loaded.ppm
         self.interval_us = loaded.interval_us

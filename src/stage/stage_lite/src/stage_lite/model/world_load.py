@@ -66,27 +66,11 @@ class LoadedWorld:
     show_clock_interval: int = 100
 
 
-class LoadDraws:
-    """What loading draws at random: drand48() from the world's stream (glibc_random.Rand48)
-    as Stage draws it (random colours, odometry errors), or from numpy's generator without
-    one; random() numpy's."""
-
-    def __init__(self, rng, rand48=None):
-        self._rng = rng
-        self._rand48 = rand48
-
-    def random(self):
-        return self._rng.random()
-
-    def drand48(self):
-        return self._rng.random() if self._rand48 is None else self._rand48.drand48()
-
-
-def load(path, rng, rand48=None):
+def load(path, rand48):
     """The world file at path, loaded (WorldError for what Stage refuses); rand48
     (glibc_random.Rand48, the world's drand48 stream) draws what Stage draws from drand48()
-    while loading (the position models' odometry errors as their constructors draw them,
-    `color "random"` as Model::Load does), else rng (numpy's) draws those."""
+    while loading: the position models' odometry errors as their constructors draw them,
+    `color "random"` as Model::Load does."""
     wf = Worldfile(path)
     resolution_m = wf.read_float(0, 'resolution', 0.02)
     if not resolution_m > 0:
@@ -106,7 +90,7 @@ def load(path, rng, rand48=None):
     for name in TOP_LEVEL:
         if wf.exists(0, name):
             wf.read_string(0, name, '')
-    window, models = _load_models(wf, path, rng, rand48)
+    window, models = _load_models(wf, path, rand48)
     ppm = 1.0 / resolution_m
     stageros_warnings = []
     robots, space, ray_zs, statics, static_cells = _post_load(models, ppm, stageros_warnings,
@@ -117,14 +101,13 @@ def load(path, rng, rand48=None):
                        stageros_warnings, threads, **flags)
 
 
-def _load_models(wf, path, rng, rand48):
+def _load_models(wf, path, rand48):
     """World::Load's models: (the window block's properties or None, every model)."""
     world_dir = os.path.dirname(os.path.abspath(path))
     window = None
     models = []
     by_entity = {}
     counts = {'model': 1}   # Stage's own ground model is model:0: a world's first is model:1
-    draws = LoadDraws(rng, rand48)
     for ent in wf.entities[1:]:
         parent = by_entity.get(ent.parent)
         if ent.kind == 'window':
@@ -142,9 +125,9 @@ def _load_models(wf, path, rng, rand48):
                 raise WorldError(ent.path, ent.line, 'a %s inside a window( )' % ent.kind)
             m = CLASSES.get(ent.kind, Model)(world_dir, parent, ent.kind, len(models),
                                              ent.index, counts)
-            if rand48 is not None and isinstance(m, Position):
+            if isinstance(m, Position):
                 m.draw_integration_error(rand48)
-            m.load(wf, draws)
+            m.load(wf, rand48)
             if ent.kind not in SIMULATED_TYPES:
                 wf.warnings.append('%s:%d: %s models are not simulated here; loaded as a'
                                    ' body' % (ent.path, ent.line, ent.kind))
