@@ -32,6 +32,7 @@ With --no-race, every ranger casts after the moves (stage_lite without its model
 worker-thread race, race.py), for a side-by-side comparison.
 """
 import argparse
+import contextlib
 import json
 import os
 import sys
@@ -65,53 +66,52 @@ def runs_part(prefix):
     return min(parts) if parts else None
 
 
-def own_seed_partings(world, folder, race=True):
-    """Per real run, the state at which stage_lite, run with that run's clock second
-    (load_world's run: Stage's srand48(time(NULL)), and fasr2's srandom), first differs
-    from it (first_difference), over the golden data's float64 prefix."""
-    import numpy as np
+@contextlib.contextmanager
+def golden_world(world, folder, **kw):
+    """stage_lite's World of a golden world from Stage's worlds/ `folder`, as `stage -g`
+    loads it, in Stage's model order (load_world's other keywords: kw), the world file's
+    folder the working directory meanwhile (worlds name their .inc and bitmaps from it)."""
     from stage_lite.model.world import load_world
-    data = np.load(os.path.join(GOLDEN, world + '.npz'))
-    meta = json.loads(str(data['meta']))
-    prefix = data['prefix_pose']
     with open(os.path.join(GOLDEN, 'model_order.json')) as f:
         order = json.load(f)[world]
     path = os.path.join(folder, FILES.get(world, world + '.world'))
     here = os.getcwd()
     os.chdir(os.path.dirname(path))
     try:
-        out = []
-        for r, second in enumerate(meta['seeds']):
-            w = load_world(os.path.basename(path), stageros=False, model_order=order,
-                           race=race, run=second)
+        yield load_world(os.path.basename(path), stageros=False, model_order=order, **kw)
+    finally:
+        os.chdir(here)
+
+
+def own_seed_partings(world, folder, race=True):
+    """Per real run, the state at which stage_lite, run with that run's clock second
+    (load_world's run: Stage's srand48(time(NULL)), and fasr2's srandom), first differs
+    from it (first_difference), over the golden data's float64 prefix."""
+    import numpy as np
+    data = np.load(os.path.join(GOLDEN, world + '.npz'))
+    meta = json.loads(str(data['meta']))
+    prefix = data['prefix_pose']
+    out = []
+    for r, second in enumerate(meta['seeds']):
+        with golden_world(world, folder, race=race, run=second) as w:
             poses = [[x.pose for x in w.robots]]
             for _ in range(prefix.shape[1] - 1):
                 w.step()
                 poses.append([x.pose for x in w.robots])
-            out.append(first_difference(np.array(poses), prefix[r]))
-        return out
-    finally:
-        os.chdir(here)
+        out.append(first_difference(np.array(poses), prefix[r]))
+    return out
 
 
 def check(world, folder, seconds, seed=None, race=True, run=None):
     """One world's line of figures (a dict)."""
     import numpy as np
-    from stage_lite.model.world import load_world
     from stage_lite.testing import swarm_stats
     data = np.load(os.path.join(GOLDEN, world + '.npz'))
     meta = json.loads(str(data['meta']))
-    with open(os.path.join(GOLDEN, 'model_order.json')) as f:
-        order = json.load(f)[world]
-    path = os.path.join(folder, FILES.get(world, world + '.world'))
     dt = meta['interval_sim_us'] / 1e6
     steps = int(round(min(seconds, (meta['states'] - 1) * dt) / dt))
-    here = os.getcwd()
-    os.chdir(os.path.dirname(path))      # worlds name their .inc and bitmaps from there
-    try:
-        t0 = time.perf_counter()
-        w = load_world(os.path.basename(path), seed=seed, stageros=False, model_order=order,
-                       race=race, run=run)
+    t0 = time.perf_counter()
+    with golden_world(world, folder, seed=seed, race=race, run=run) as w:
         load_s = time.perf_counter() - t0
         sinks = [m for m in w.models if m.parent is None and m.token.endswith('sink')]
         poses = [[r.pose for r in w.robots]]
@@ -122,8 +122,6 @@ def check(world, folder, seconds, seed=None, race=True, run=None):
             poses.append([r.pose for r in w.robots])
             held.append([len(m.flags) for m in sinks])
         run_s = time.perf_counter() - t0
-    finally:
-        os.chdir(here)
     poses = np.array(poses)
     prefix = data['prefix_pose']
     n = min(prefix.shape[1], poses.shape[0])
