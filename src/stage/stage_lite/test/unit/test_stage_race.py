@@ -113,19 +113,15 @@ def test_a_stale_cast_reads_the_robots_pose_before_the_move(tmp_path):
         assert view.ranges.tobytes() != earlier.tobytes()
 
 
-def run(path, seed, steps=40):
-    return run_of(path, steps, seed=seed)
-
-
 def test_a_threaded_world_is_one_run_per_seed(tmp_path):
     path = swarm(tmp_path, 'threads 4')
-    poses, stale = run(path, None)
-    again, stale_again = run(path, None)
+    poses, stale = run_of(path)
+    again, stale_again = run_of(path)
     assert poses.tobytes() == again.tobytes()
     assert all(a.tobytes() == b.tobytes() for a, b in zip(stale, stale_again, strict=True))
     early = np.concatenate(stale)
     assert 0 < early.sum() < early.size           # the race falls both ways
-    other, stale_other = run(path, 5)
+    other, stale_other = run_of(path, seed=5)
     assert other.tobytes() != poses.tobytes()
     assert any(a.tobytes() != b.tobytes() for a, b in zip(stale, stale_other, strict=False))
 
@@ -157,7 +153,8 @@ def test_a_run_number_draws_what_stage_takes_from_the_clock_and_keeps_random(tmp
 
 
 def run_of(path, steps=40, **kw):
-    """run() with load_world's keywords."""
+    """A threaded world's poses over `steps` steps and the race's stale casts of each
+    (load_world's keywords: kw)."""
     w = load_world(path, stageros=False, **kw)
     stale = []
     draw = w.race.stale
