@@ -234,15 +234,15 @@ def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robo
     fast, each = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
                                                                        stageros=False)
 
-    def one_by_one(finders, index, sight, layer):
-        for f in finders:
-            f.update_one_by_one(index, sight, layer)
+    def one_by_one(ids, models, index, sight, layer):
+        for i in ids.tolist():
+            models(i).update_one_by_one(index, sight, layer)
 
     seen = 0
     for step in range(STEPS):
         fast.step()
         with monkeypatch.context() as m:
-            m.setattr(world_module, 'update_all', one_by_one)
+            m.setattr(world_module, 'update_ids', one_by_one)
             each.step()
         assert_same(snapshot(fast), snapshot(each), step)
         for f, g in zip(fast.models, each.models, strict=True):
@@ -252,6 +252,62 @@ def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robo
                     r.model.index]}) for r in g.fiducials], step
                 seen += len(f.fiducials)
     assert seen > 0
+
+
+@pytest.mark.parametrize('robots', [12, 34])
+def test_a_finder_read_for_its_nearest_only_finds_the_same_nearest(tmp_path, robots):
+    """pioneer_flocking reads its finders' nearest only, so their updates find it alone
+    (finders._see_nearest: the rays to the others skipped). Against the same world whose
+    finders make all their readings: the same run, bit for bit, the same nearest at every
+    step, and the readings, asked for in the step, made as the full update makes them; a
+    step later they cannot be made, and saying so is an error."""
+    path = flocking_world(tmp_path, robots, 7, 0.7)
+    near, full = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
+                                                                       stageros=False)
+    full.fiducial_index.nearest_only_allowed = False
+    finders = [m for m in near.models if isinstance(m, fiducial_module.Fiducial)]
+    assert len(finders) == robots and all(f.nearest_only for f in finders)
+    skipped = seen = 0
+    for step in range(STEPS):
+        near.step()
+        full.step()
+        assert_same(snapshot(near), snapshot(full), step)
+        skipped += sum(f._seen is not None and f._seen[0].count[f._seen[1]] < 0
+                       for f in finders)
+        for f in finders:
+            g = full.models[f.index]
+            assert f.nearest() == g.nearest(), step
+            if step % 3 == 0:
+                assert f.seen_count() == g.seen_count()
+                assert f.fiducials == [r.__class__(**{**r.__dict__, 'model': near.models[
+                    r.model.index]}) for r in g.fiducials], step
+                seen += len(f.fiducials)
+    assert skipped == STEPS * robots and seen > 0
+    near.fiducial_index.begin_step()        # the next step's start
+    later = [f for f in finders if f._seen is not None]
+    assert later
+    with pytest.raises(RuntimeError, match='a step later'):
+        later[0].seen_count()
+
+
+def test_your_own_controller_in_the_world_makes_every_finder_make_all_its_readings(
+        tmp_path, monkeypatch):
+    """A controller of your own may read any finder at any time: with one in the world no
+    finder skips a ray, whatever its controller says."""
+    (tmp_path / 'mine.py').write_text('def init(model, args):\n    model.subscribe()\n')
+    monkeypatch.setenv('STAGEPATH', str(tmp_path))
+    path = flocking_world(tmp_path, 6, 3, 0.9)
+    with open(path, 'a') as f:
+        f.write('model( name "own" pose [ 2.5 2.5 0 0 ] size [ 0.2 0.2 0.2 ] ctrl "mine" )\n')
+    w = load_world(path, seed=5, stageros=False)
+    assert not w.fiducial_index.nearest_only_allowed
+    w.step()
+    finders = [m for m in w.models if isinstance(m, fiducial_module.Fiducial)]
+    # each update made its count of readings (-1: the nearest alone)
+    assert finders and all(f.nearest_only and f._seen[0].count[f._seen[1]] >= 0
+                           for f in finders)
+    assert load_world(flocking_world(tmp_path, 6, 3, 0.9), stageros=False
+                      ).fiducial_index.nearest_only_allowed
 
 
 def test_the_noise_kernel_draws_as_the_beams_one_by_one():

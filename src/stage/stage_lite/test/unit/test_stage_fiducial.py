@@ -258,7 +258,7 @@ def test_set_return_moves_the_model_to_the_end_of_the_list(tmp_path):
     assert s.index.models == [a, b]
     s.index.set_return(a, 3)
     assert s.index.models == [b, a] and a.fiducial_return == 3
-    FiducialIndex.set_key(a, 4)
+    s.index.set_key(a, 4)
     assert a.fiducial_key == 4
 
 

@@ -18,6 +18,7 @@ import numpy as np
 
 from stage_lite.model.glibc_random import drand48_next
 from stage_lite.model.jit import kernel
+from stage_lite.model.stage_api_sensors import FiducialApi
 
 from ._expand import all_clear, sensors_sum, set_velocity
 
@@ -51,6 +52,7 @@ def init(model, args):
     if finder is None:
         raise LookupError('%s carries no unused fiducial finder' % model.token)
     finder.add_callback('update', flocker.fiducial_update)
+    finder.read_nearest_only()
     finder.subscribe()
     ranger.subscribe()
     model.subscribe()
@@ -181,20 +183,14 @@ class _Batch:
         near = np.zeros(len(plan['kind']), np.float64)
         finders = plan['finders']
         at = rows[plan['kind'][rows] == FINDER]
-        # each (the step's nearest array, the finder's row): its nearest, unmade; all from
-        # one array (the finders of one update_all), read at once
-        seen = [finders[e].last_nearest() for e in at.tolist()]
-        if seen and all(s is not None and s[0] is seen[0][0] for s in seen):
-            near_of = seen[0][0][[i for _, i in seen]]
+        # their nearest, unmade, all from one update_all's array at once; else one by one
+        near_of = (FiducialApi.nearest_rows(list(map(finders.__getitem__, at.tolist())))
+                   if at.size else None)
+        if near_of is not None:
             found[at] = near_of[:, 2] != 0.0
             near[at] = near_of[:, 1]
         else:
-            for e, s in zip(at.tolist(), seen, strict=True):
-                if s is not None:
-                    near_of, i = s
-                    found[e] = near_of[i, 2] != 0.0
-                    near[e] = near_of[i, 1]
-                    continue
+            for e in at.tolist():
                 nearest = finders[e].nearest()
                 if nearest is not None:
                     found[e] = True

@@ -73,8 +73,9 @@ def builtin_names():
 
 def start(world, environ=None):
     """Every model's controllers, loaded and initialised in Stage's order; WorldError for the
-    first that cannot be used."""
+    first that cannot be used. Returns whether one of them is your own (from STAGEPATH)."""
     pending = []
+    own = False
     stagepath = (os.environ if environ is None else environ).get('STAGEPATH', 'unset')
     for model in world.stage_order:      # Stage's InitControllers: World::models' order
         for text, path, line in model.ctrl:
@@ -96,6 +97,7 @@ def start(world, environ=None):
                 raise WorldError(path, line, 'ctrl "%s": %s has no init(model, args)'
                                  % (text, where))
             pending.append((model, text, path, line, init))
+            own = own or not where.startswith(BUILTIN_PACKAGE + '.')
     scheduler = world.scheduler
     scheduler.on_error = lambda owner, model, err: world.log(
         '%s:%d: ctrl "%s" on %s: %s; its callback is removed, the other models go on'
@@ -109,6 +111,7 @@ def start(world, environ=None):
                              % (text, model.token, describe(err))) from None
         finally:
             scheduler.owner = None
+    return own
 
 
 class Owner:

@@ -52,6 +52,7 @@ What the world must provide (the lead's World.step wires it):
 import bisect
 import math
 from dataclasses import dataclass
+from operator import attrgetter, itemgetter
 
 import numpy as np
 
@@ -77,9 +78,11 @@ class FiducialReading:
 
 
 def python_poses(models, body=False, at=None):
-    """Model.global_pose (or body_pose) of each model, as an (n, 4) array."""
-    return np.array([m.body_pose() if body else m.global_pose() for m in models],
-                    np.float64).reshape(-1, 4)
+    """Model.global_pose (or body_pose) of each model, as an (n, 4) array (body: one for
+    all, or one per model)."""
+    each = np.broadcast_to(np.asarray(body, np.bool_), (len(models),)).tolist()
+    return np.array([m.body_pose() if b else m.global_pose()
+                     for m, b in zip(models, each, strict=True)], np.float64).reshape(-1, 4)
 
 
 class FiducialIndex:
@@ -92,19 +95,27 @@ class FiducialIndex:
 
     def __init__(self, models, rank=None):
         self.rank = rank if rank is not None else (lambda m: m.index)
-        # poses(models, body=False, at=None): their global poses (or their bodies' frames)
-        # now, an (n, 4) array (at: their indices, or None); the World gives its kernels'
-        # (World.global_poses)
+        # poses(models, body=False, at=None): their global poses (or their bodies' frames;
+        # body: one bool for all, or one per model) now, an (n, 4) array (at: their indices,
+        # or None); the World gives its kernels' (World.global_poses)
         self.poses = python_poses
         self._constants = {}
         self._finder_row = {}
-        self.finder_sets = {}       # finders.update_all's constants per list of finders
+        self.finder_sets = {}       # finders.update_all's plans per list of finders
+        # changes with the members, their returns or anyone's key (set_return, set_key)
+        self.version = 0
+        self.steps = 0          # begin_step's count
+        # whether a finder that reads its nearest only (Fiducial.nearest_only) may skip the
+        # rays to the others (the World says no when your own controllers run)
+        self.nearest_only_allowed = True
         self.finder_table = dict(ints=np.zeros((0, 4), np.int64),
                                  floats=np.zeros((0, 3), np.float64))
         self.models = []      # Stage's vector: insertion order (erase, then push_back)
         for m in models:
             self.set_return(m, m.fiducial_return)
         self._members = []
+        self._members_of = None     # the version _members were taken at
+        self._member_constants = (None, None)   # (_members, their constants)
         self._order_x = self._order_y = np.zeros(0, np.int64)
         self._sorted_for = None     # (the members' constants, their poses) last sorted
         self.begin_step()
@@ -114,20 +125,25 @@ class FiducialIndex:
         the fiducial-bearing models (at the end), 0 leaves them. The finders' candidates
         follow at the next begin_step, as Stage's sets."""
         model.fiducial_return = int(value)
+        self.version += 1
         if model in self.models:
             self.models.remove(model)
         if model.fiducial_return != 0:
             self.models.append(model)
 
-    @staticmethod
-    def set_key(model, value):
+    def set_key(self, model, value):
         """Model::SetFiducialKey."""
         model.fiducial_key = int(value)
+        self.version += 1
 
     def begin_step(self):
         """World::Update's first work: the sets sorted by global x and by global y (ties by
         address: rank) rebuilt from the fiducial-bearing models' poses now."""
-        members = self._members = list(self.models)
+        self.steps += 1
+        if self._members_of != self.version:
+            self._members = list(self.models)
+            self._members_of = self.version
+        members = self._members
         constants = self.constants(members)
         _, at, self._ranks, _, _ = constants
         poses = self.poses(members, at=at)
@@ -143,6 +159,8 @@ class FiducialIndex:
         """(root indices, model indices, ranks, the models' places by rank, each model's
         place among those) of the models, arrays, kept for the same list of models (the
         sets' members from one begin_step to the next)."""
+        if models is self._member_constants[0]:     # the sets' members: asked every step
+            return self._member_constants[1]
         key = (self.rank, tuple(models))
         got = self._constants.get(key)
         if got is None:
@@ -155,6 +173,8 @@ class FiducialIndex:
             got = self._constants[key] = (
                 np.array([h.root.index for h in models], np.int64),
                 np.array([h.index for h in models], np.int64), ranks, by_rank, rank_at)
+        if models is self._members:
+            self._member_constants = (models, got)
         return got
 
     def finder_rows(self, finders, sight):
@@ -221,6 +241,9 @@ class Fiducial(models.Fiducial):
         self.range_max_id = DEFAULT_RANGE_MAX_ID
         self.fov = DEFAULT_FOV
         self.ignore_zloc = False
+        # only nearest() is read (its controller says so): an update may find the nearest
+        # alone, the readings completed if asked in the same step (finders._Seen.complete)
+        self.nearest_only = False
         self._fiducials = []
         # (update_all's _Seen, this finder's place in it) while the readings are not made
         self._seen = None
@@ -261,6 +284,8 @@ class Fiducial(models.Fiducial):
         kernel's numbers when first asked."""
         if self._seen is not None:
             step, i = self._seen
+            if step.count[i] < 0:
+                step.complete(i)
             members, poses, (out_c, out_f, out_id) = step.members, step.poses, step.out
             at, count = i * len(members), int(step.count[i])
             self._seen = None
@@ -284,16 +309,10 @@ class Fiducial(models.Fiducial):
         """How many readings the last update made, without making them."""
         if self._seen is not None:
             step, i = self._seen
+            if step.count[i] < 0:
+                step.complete(i)
             return int(step.count[i])
         return len(self._fiducials)
-
-    def last_nearest(self):
-        """(update_all's nearest array, this finder's row in it) while its readings are not
-        made, else None (then nearest() computes it from them)."""
-        if self._seen is None:
-            return None
-        step, i = self._seen
-        return step.nearest, i
 
     def nearest(self):
         """(range, his heading relative to the finder's) of the first reading of the least
@@ -336,6 +355,25 @@ class Fiducial(models.Fiducial):
             model=him, range=rng, bearing=dtheta,
             geom=(size[0], size[1], size[2], stage_normalize(hispose[3] - ma)),
             pose=hispose, id=him.fiducial_return if rng < self.range_max_id else 0)
+
+
+def last_nearest_of(finders):
+    """Fiducial.nearest() of each finder as an array of rows (range, his heading relative to
+    the finder's, 1.0 if it saw one else 0.0), when one update_all made their readings and
+    none were made or replaced since; else None."""
+    seen = list(map(_SEEN, finders))
+    try:
+        steps = set(map(_STEP, seen))
+    except TypeError:           # one's readings made or set (its _seen None)
+        return None
+    if len(steps) != 1:
+        return None
+    return steps.pop().nearest[np.fromiter(map(_ROW, seen), np.int64, len(seen))]
+
+
+_SEEN = attrgetter('_seen')
+_STEP = itemgetter(0)
+_ROW = itemgetter(1)
 
 
 def _reading(him, hispose, rng, bearing, geom_a, fid):

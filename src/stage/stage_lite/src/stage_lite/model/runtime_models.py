@@ -145,6 +145,7 @@ def _list(world, m):
     world.stage_order.append(m)
     world._masks_version = None       # the per-model masks are remade at the next step
     world._model_chains = None
+    world._static_poses.clear()       # World.global_poses's plans: rows of those chains
     tokens = world._models_by_token
     if tokens is not None:
         tokens[m.token] = m           # Stage's models_by_name: the latest of a name wins

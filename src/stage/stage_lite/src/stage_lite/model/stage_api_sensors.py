@@ -4,6 +4,7 @@ stage_api.api_of). No rospy.
 """
 from dataclasses import replace
 
+from .fiducial import last_nearest_of
 from .stage_api import ModelApi, Pose, api_of
 
 
@@ -72,10 +73,20 @@ class FiducialApi(ModelApi):
         making the readings."""
         return self._model.nearest()
 
-    def last_nearest(self):
-        """(an array of rows (range, heading, found), this finder's row) holding nearest()
-        as the last update's kernel left it, or None: for a controller's batch."""
-        return self._model.last_nearest()
+    def read_nearest_only(self):
+        """This finder's readings are read by nearest() only (a controller that says so):
+        its updates may then find the nearest alone, skipping the rays to the others (what
+        it sees is the same; asked for, the readings are made as the update would have, in
+        the step of that update). Not when your own controllers run: every finder makes
+        all its readings then."""
+        self._model.nearest_only = True
+
+    @staticmethod
+    def nearest_rows(handles):
+        """The handles' finders' nearest() at once, as rows (range, heading, found), when
+        one update made them all (fiducial.last_nearest_of), else None: for a controller's
+        batch."""
+        return last_nearest_of([h._model for h in handles])
 
 
 class BlobfinderApi(ModelApi):

@@ -42,7 +42,7 @@ from .camera import CameraRig
 from .casts import RangerCasts
 from .energy import Energy
 from .fiducial import Fiducial, FiducialIndex
-from .finders import update_all
+from .finders import update_ids
 from .glibc_random import Rand48, Random
 from .motion import Chains, Motion, elements
 from .noise import RangerNoise
@@ -143,8 +143,8 @@ class World(RangerCasts, RobotByRobot):
         self._masks_version = None
         self._model_chains = None        # every model's chain, made when first needed
         # (model index, body) -> a static model's global pose, and (the indices' bytes,
-        # body) -> those of a set of static models (global_poses), forgotten whenever a
-        # static model is moved or resized (runtime_models._redraw)
+        # body) -> global_poses's plan for those models, forgotten whenever a static model
+        # is moved or resized or a model is made (runtime_models)
         self._static_poses = {}
         # what models made, moved or recoloured at run time leave for the next step
         # (runtime_models): a static model's drawing, a robot's tree
@@ -171,7 +171,9 @@ class World(RangerCasts, RobotByRobot):
         for m in self.models:           # Model::Load's Subscribe of an `alwayson` model
             if m.alwayson:
                 self.subscribe(m)
-        controllers.start(self)
+        # your own controllers may read any finder's readings at any time: then every
+        # finder makes them all (Stage's own read what they say: FiducialApi.read_nearest_only)
+        self.fiducial_index.nearest_only_allowed = not controllers.start(self)
         if stageros:
             self.subscribe_stageros()
 
@@ -202,20 +204,31 @@ class World(RangerCasts, RobotByRobot):
         return poses
 
     def global_poses(self, models, body=False, at=None):
-        """Model.global_pose (body_pose with body) of each model, an (n, 4) array: carried
-        from the robots' poses by motion.Chains' kernel for the models of robot trees (at:
-        their indices, if the caller has them), by Model.global_pose for static ones."""
+        """Model.global_pose (body_pose with body: one bool for all, or one per model) of
+        each model, an (n, 4) array: carried from the robots' poses by motion.Chains' kernel
+        for the models of robot trees (at: their indices, if the caller has them), by
+        Model.global_pose for static ones."""
         if at is None:
             at = np.fromiter((m.index for m in models), np.int64, len(models))
-        key = (at.tobytes(), body)
-        rows = self._static_poses.get(key)
-        if rows is not None:                # static models only (the finders' sets)
-            return rows.copy()
+        key = (at.tobytes(), body if isinstance(body, bool) else np.asarray(body).tobytes())
+        plan = self._static_poses.get(key)
+        if plan is None:
+            plan = self._static_poses[key] = self._pose_plan(models, body, at)
+        rows, static, static_rows = plan
+        if rows is None:                    # static models only (the finders' sets)
+            return static_rows.copy()
+        out = np.empty((len(models), 4), np.float64)
+        self._model_chains.poses(rows, self.state.pose, out)
+        if static_rows is not None:         # their chains start at robot 0: rows replaced
+            out[static] = static_rows
+        return out
+
+    def _pose_plan(self, models, body, at):
+        """global_poses's (chain rows or None, the static models' places, their rows) of
+        these models, kept until a model is made, moved or resized (runtime_models)."""
         static = np.flatnonzero(self._robot_slot[self._root_of[at]] < 0)
         if len(static) == len(models):
-            rows = self._static_poses[key] = self._static_pose_rows(
-                models, range(len(models)), body)
-            return rows.copy()
+            return None, static, self._static_pose_rows(models, range(len(models)), body)
         if self._model_chains is None:
             n = len(self.models)
             slots = [max(0, self._robot_slot[m.root.index]) for m in self.models]
@@ -224,13 +237,9 @@ class World(RangerCasts, RobotByRobot):
                 + [(r, elements(m, [m.geom_pose])) for r, m in zip(slots, self.models,
                                                                   strict=True)])
             self._model_chains.count = n
-        out = np.empty((len(models), 4), np.float64)
-        if body:
-            at = at + self._model_chains.count
-        self._model_chains.poses(at, self.state.pose, out)
-        if len(static):                     # their chains start at robot 0: rows replaced
-            out[static] = self._static_pose_rows(models, static.tolist(), body)
-        return out
+        rows = at + self._model_chains.count * np.asarray(body, np.int64)
+        return (rows, static,
+                self._static_pose_rows(models, static.tolist(), body) if len(static) else None)
 
     def _static_pose_rows(self, models, which, body):
         """python_poses of models[k] for k in which, static models: from the cache."""
@@ -238,9 +247,10 @@ class World(RangerCasts, RobotByRobot):
         rows = []
         for k in which:
             m = models[k]
-            pose = cache.get((m.index, body))
+            b = bool(body if isinstance(body, (bool, np.bool_)) else body[k])
+            pose = cache.get((m.index, b))
             if pose is None:
-                pose = cache[m.index, body] = m.body_pose() if body else m.global_pose()
+                pose = cache[m.index, b] = m.body_pose() if b else m.global_pose()
             rows.append(pose)
         return np.array(rows, np.float64).reshape(-1, 4)
 
@@ -319,10 +329,12 @@ class World(RangerCasts, RobotByRobot):
         if rangers.size:
             self.cast_ranger_slots(rangers, sensing, self._stale(updated, is_ranger), before)
         if self._any_finder:
-            finders = [models[i] for ids in updated[1:]
-                       for i in ids[self._kind[Fiducial][ids]].tolist()]
-            if finders:
-                update_all(finders, self.fiducial_index, self.sight, sensing)
+            is_finder = self._kind[Fiducial]
+            finders = [ids[is_finder[ids]] for ids in updated[1:]]
+            finders = np.concatenate(finders) if finders else None
+            if finders is not None and finders.size:
+                update_ids(finders, models.__getitem__, self.fiducial_index, self.sight,
+                           sensing)
         self._call_updates(every, with_callbacks)
         scheduler.call_world(self)
         if self._packs:
