@@ -11,7 +11,9 @@ from stage_lite.controllers import _fasr_batch as fasr_batch
 from stage_lite.controllers import fasr, fasr2
 from stage_lite.model import fiducial as fiducial_module
 from stage_lite.model import finders as finders_module
+from stage_lite.model import sensing
 from stage_lite.model import world as world_module
+from stage_lite.model.jit import numba_threads
 from stage_lite.model.world import load_world
 
 STEPS = 60
@@ -234,15 +236,25 @@ def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robo
     fast, each = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
                                                                        stageros=False)
 
-    def one_by_one(ids, models, index, sight, layer):
-        for i in ids.tolist():
-            models(i).update_one_by_one(index, sight, layer)
+    class OneByOne:
+        """prepare_ids's Finding, the finders updated one by one when it is published."""
+        args = None
+
+        def __init__(self, ids, models, index, sight, layer):
+            self.update = [(models(i), index, sight, layer) for i in ids.tolist()]
+
+        def run(self):
+            pass
+
+        def publish(self):
+            for finder, *how in self.update:
+                finder.update_one_by_one(*how)
 
     seen = 0
     for step in range(STEPS):
         fast.step()
         with monkeypatch.context() as m:
-            m.setattr(world_module, 'update_ids', one_by_one)
+            m.setattr(world_module, 'prepare_finders', OneByOne)
             each.step()
         assert_same(snapshot(fast), snapshot(each), step)
         for f, g in zip(fast.models, each.models, strict=True):
@@ -288,6 +300,30 @@ def test_a_finder_read_for_its_nearest_only_finds_the_same_nearest(tmp_path, rob
     assert later
     with pytest.raises(RuntimeError, match='a step later'):
         later[0].seen_count()
+
+
+def test_the_rays_and_the_finders_together_read_as_apart(tmp_path, monkeypatch):
+    """sensing.sense: a step's rays and finders in one parallel region give the bits of the
+    two kernels apart (each thread takes every other ray and finder)."""
+    if numba_threads() < 2:
+        pytest.skip('one numba thread: the rays and finders are never together')
+    path = flocking_world(tmp_path, 34, 7, 0.7)
+    together, apart = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
+                                                                          stageros=False)
+    calls = []
+    joint = sensing._cast_and_find
+    monkeypatch.setattr(sensing, '_cast_and_find', lambda *a: calls.append(1) or joint(*a))
+    monkeypatch.setattr(sensing, 'TOGETHER_WORK', 1)
+    finders = [m for m in apart.models if isinstance(m, fiducial_module.Fiducial)]
+    for step in range(STEPS):
+        together.step()
+        with monkeypatch.context() as m:
+            m.setattr(sensing, 'TOGETHER_WORK', 10 ** 9)
+            apart.step()
+        assert_same(snapshot(together), snapshot(apart), step)
+        assert [together.models[f.index].nearest() for f in finders] == [
+            f.nearest() for f in finders], step
+    assert len(calls) == STEPS
 
 
 def test_your_own_controller_in_the_world_makes_every_finder_make_all_its_readings(

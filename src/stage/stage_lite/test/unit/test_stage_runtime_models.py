@@ -139,7 +139,7 @@ def test_dynamic_on_a_robot_carries_its_boxes_as_the_real_stage(capsys):
     poses_equal(1)
     for k in range(2, len(poses) // 2):
         stream = world.random.state()             # a cast draws each beam's noise
-        world.cast_ranger_slots(slot, (world.updates + 1) % 2)
+        world.cast_rays(world._slot_indices(slot)[0], (world.updates + 1) % 2)
         before_the_moves = laser.sensors[0].ranges.tolist()
         world.random.table[:], world.random.pointers[:] = stream
         world.step()

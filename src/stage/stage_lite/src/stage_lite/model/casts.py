@@ -11,10 +11,11 @@ motion.py, else by Ranger.ray_origin itself.
 """
 import numpy as np
 
-from .jit import njit
+from .jit import kernel, njit
 from .motion import Chains, elements
 from .race import WorkerRace
 from .ranger import Ranger
+from .space import run_cast
 
 
 @njit(cache=True)
@@ -41,6 +42,15 @@ def _sorted_due(due, n):
     return positions, last, first
 
 
+@kernel
+def _store_beams(rng, hit, rr, beams, ranges, intensities):
+    """A cast's beams into the world's beam arrays at `beams`: each range, and the
+    ranger_return (rr) of the model it hit as its intensity (0 for none)."""
+    for k in range(rng.shape[0]):
+        ranges[beams[k]] = rng[k]
+        intensities[beams[k]] = rr[hit[k]] if hit[k] >= 0 else 0.0
+
+
 @njit(cache=True)
 def _ranges_of(starts, ends):
     """The integers starts[0]..ends[0]-1, starts[1]..ends[1]-1, ... in one int64 array."""
@@ -54,6 +64,24 @@ def _ranges_of(starts, ends):
             out[k] = v
             k += 1
     return out
+
+
+class Casting:
+    """A step's rays made ready (RangerCasts.begin_casts): args, raytrace.cast_scans's
+    (ranges and models hit into its last two arrays), and what end_casts reads."""
+
+    __slots__ = ('args', 'tables', 'positions', 'rows', 'stale_rows', 'layer')
+
+    def __init__(self, args, tables, positions, rows, stale_rows, layer):
+        self.args = args
+        self.tables = tables
+        self.positions = positions
+        self.rows = rows
+        self.stale_rows = stale_rows
+        self.layer = layer
+
+    def rays(self):
+        return self.args[3].shape[0]
 
 
 class RangerCasts:
@@ -70,6 +98,7 @@ class RangerCasts:
         for k, (g, _) in enumerate(self._sensors):
             self._sensor_ids.setdefault(g, []).append(k)
         self._rays = self._ray_tables(range(len(self._sensors)))
+        self._rays['beams'] = np.arange(self._rays['offsets'][-1], dtype=np.int64)
         self._subset_cache = {}
         offsets = self._rays['offsets']
         self._beam_ranges = np.zeros(int(offsets[-1]), np.float64)
@@ -82,11 +111,6 @@ class RangerCasts:
             s.intensities = self._beam_intensities[offsets[k]:offsets[k + 1]]
         self._views_of = {v.model: v for r in self.robots for v in r.rangers}
         self._prepare_slots(offsets)
-        self._noise = dict(
-            rmax=np.array([s.range[1] for _, s in self._sensors], np.float64),
-            prop=np.array([s.noise[1] for _, s in self._sensors], np.float64),
-            const=np.array([s.noise[0] for _, s in self._sensors], np.float64),
-            angular=np.array([s.noise[2] != 0.0 for _, s in self._sensors], np.bool_))
 
     def _prepare_slots(self, offsets):
         """The rangers by slot (their order in the sensors), the models' ranger slots, the
@@ -164,11 +188,16 @@ class RangerCasts:
         beam_z = {}
         for g in {g for g, _ in sensors}:
             beam_z.update((id(s), o[2]) for s, o in zip(g.sensors, g.ray_origins(), strict=True))
+        prop = np.array([s.noise[1] for _, s in sensors], np.float64)
+        const = np.array([s.noise[0] for _, s in sensors], np.float64)
         return dict(
             offsets=np.concatenate(([0], np.cumsum(counts))).astype(np.int64),
             sensor=np.repeat(np.arange(len(sensors), dtype=np.int64), counts),
             incr=np.array([Ranger.sample_increment(s) for _, s in sensors], np.float64),
             rmax=np.array([s.range[1] for _, s in sensors], np.float64),
+            # their noise (noise.py): const, prop, and whether any has angular noise
+            prop=prop, const=const,
+            angular=any(s.noise[2] != 0.0 for _, s in sensors),
             ray_class=np.array([self._ray_zs.index(beam_z[id(s)]) for _, s in sensors],
                                np.int64),
             root=np.array([g.root.index for g, _ in sensors], np.int64),
@@ -218,14 +247,23 @@ class RangerCasts:
         stale (bool per due sensor): those cast from their robot's pose `before` this
         step's move instead (race.py; `before`: the robots' poses then, a copy of
         state.pose)."""
+        casting = self.begin_casts(due, layer, stale, before)
+        run_cast(casting.args)
+        self.end_casts(casting)
+
+    def begin_casts(self, due=None, layer=None, stale=None, before=None):
+        """cast_rays up to its rays (a Casting: its args for raytrace.cast_scans, in any
+        thread); end_casts then stores the readings."""
         if layer is None:
             layer = (self.updates + 1) % 2
         due = self._all_sensors if due is None else np.asarray(due, np.int64)
         every = len(due) == len(self._sensors)
+        # rows: each due sensor's row of the cast (its last, as a dict of them would say)
         if every:
             positions = self._all_sensors
+            rows = due
         else:
-            positions, last, first = _sorted_due(due, len(self._sensors))
+            positions, rows, first = _sorted_due(due, len(self._sensors))
         tables = self._rays if every else self._subset_tables(positions)
         origins = tables['origins']
         if self.motion is not None:
@@ -239,30 +277,31 @@ class RangerCasts:
             stale_rows = np.zeros(len(positions), np.bool_)
             stale_rows[due[stale] if every else first[stale]] = True
             self._stale_origins(positions, stale_rows, before, origins)
-        rng, hit = self.space.cast(origins, tables['incr'], tables['offsets'], tables['sensor'],
-                                   tables['rmax'], tables['ray_class'], tables['root'], layer)
-        rr = self.space.model_rr
-        intensities = np.where(hit >= 0, rr[np.maximum(hit, 0)], 0.0)
-        offsets = tables['offsets']
-        # each due sensor's row of the cast (its last, as a dict of them would say)
-        rows = due if every else last
-        self._draw_noise(rng, offsets, rows, positions, layer, None if stale_rows is None
-                         else np.where(stale_rows[:, None], origins, np.nan))
-        if every:
-            self._beam_ranges[:] = rng
-            self._beam_intensities[:] = intensities
-        else:
-            self._beam_ranges[tables['beams']] = rng
-            self._beam_intensities[tables['beams']] = intensities
+        args = self.space.cast_args(origins, tables['incr'], tables['offsets'],
+                                    tables['sensor'], tables['rmax'], tables['ray_class'],
+                                    tables['root'], layer)
+        return Casting(args, tables, positions, rows, stale_rows, layer)
 
-    def cast_ranger_slots(self, slots, layer, stale=None, before=None):
-        """cast_rays of every sensor of the rangers `slots` (int64 array of ranger slots, in
-        the order they updated); stale: a bool per slot, its sensors cast from `before`."""
+    def end_casts(self, casting):
+        """The readings of a Casting's rays (cast): their intensities, their noise drawn in
+        Stage's order, stored in the sensors' beams."""
+        rng, hit = casting.args[-2], casting.args[-1]
+        tables, positions, stale_rows = casting.tables, casting.positions, casting.stale_rows
+        self._draw_noise(rng, tables, casting.rows, positions, casting.layer,
+                         None if stale_rows is None
+                         else np.where(stale_rows[:, None], tables['origins'], np.nan))
+        _store_beams(rng, hit, self.space.model_rr, tables['beams'], self._beam_ranges,
+                     self._beam_intensities)
+
+    def ranger_slots_casting(self, slots, layer, stale=None, before=None):
+        """begin_casts of every sensor of the rangers `slots` (int64 array of ranger slots,
+        in the order they updated); stale: a bool per slot, its sensors cast from
+        `before`."""
         sensors = self._slot_indices(slots)[0]
         if stale is not None:
             off = self._ranger_sensor_off
             stale = np.repeat(stale, off[slots + 1] - off[slots])
-        self.cast_rays(sensors, layer, stale, before)
+        return self.begin_casts(sensors, layer, stale, before)
 
     def _stale_origins(self, positions, stale_rows, before, origins):
         """origins[i] of the sensors positions[i] where stale_rows[i]: from their robots'
@@ -300,31 +339,27 @@ class RangerCasts:
                                                _ranges_of(src, src + count))
         return cached
 
-    def _draw_noise(self, rng, offsets, rows, positions, layer, stale_origins=None):
-        """Stage's draws of each sensor (rows of the cast, in Stage's order), noise added to
-        rng in place; a sensor with angular noise casts its beams again, one at a time, at
-        the angles its draws turn them to (from stale_origins' row where it is not NaN)."""
-        sensor_of = np.asarray(positions, np.int64)
-        angular = self._noise['angular'][sensor_of]
-        if not angular.any():
-            self.noise.apply_rows(rng, offsets, np.asarray(rows, np.int64),
-                                  self._noise['rmax'][sensor_of],
-                                  self._noise['prop'][sensor_of],
-                                  self._noise['const'][sensor_of])
+    def _draw_noise(self, rng, tables, rows, positions, layer, stale_origins=None):
+        """Stage's draws of each sensor (rows of the cast of `tables`, _ray_tables's of the
+        sensors `positions`, in Stage's order), noise added to rng in place; a sensor with
+        angular noise casts its beams again, one at a time, at the angles its draws turn
+        them to (from stale_origins' row where it is not NaN)."""
+        offsets = tables['offsets']
+        rows = np.asarray(rows, np.int64)
+        if not tables['angular']:
+            self.noise.apply_rows(rng, offsets, rows, tables['rmax'], tables['prop'],
+                                  tables['const'])
             return
-        for i in np.asarray(rows).tolist():
+        for i in rows.tolist():
             g, s = self._sensors[positions[i]]
-            beams = slice(offsets[i], offsets[i + 1])
-            if not angular[i]:
-                self.noise.apply_rows(rng, offsets, np.array([i], np.int64),
-                                      self._noise['rmax'][sensor_of],
-                                      self._noise['prop'][sensor_of],
-                                      self._noise['const'][sensor_of])
+            if s.noise[2] == 0.0:
+                self.noise.apply_rows(rng, offsets, np.array([i], np.int64), tables['rmax'],
+                                      tables['prop'], tables['const'])
                 continue
             origin = None
             if stale_origins is not None and not np.isnan(stale_origins[i, 0]):
                 origin = tuple(stale_origins[i])
-            rng[beams] = self._angular_scan(g, s, layer, origin)
+            rng[offsets[i]:offsets[i + 1]] = self._angular_scan(g, s, layer, origin)
 
     def _angular_scan(self, g, s, layer, origin=None):
         """A sensor with angular noise, beam by beam as Sensor::Update casts it: each beam's

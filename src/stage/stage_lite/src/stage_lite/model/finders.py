@@ -31,17 +31,20 @@ def update_all(finders, index, sight, layer):
     in one kernel: the candidates (index's sets, their global poses now), the rule and the
     rays (sight's). Nothing moves between the finders' updates, so the poses are read once."""
     ids = np.fromiter((f.index for f in finders), np.int64, len(finders))
-    update_ids(ids, finders.__getitem__, index, sight, layer, positions=True)
+    finding = prepare_ids(ids, finders.__getitem__, index, sight, layer, positions=True)
+    finding.run()
+    finding.publish()
 
 
-def update_ids(ids, models, index, sight, layer, positions=False):
-    """update_all of the finders `ids` (an int64 array of model indices, in update order):
-    models[i] is the finder of index i (positions: models[k] the k-th of ids)."""
+def prepare_ids(ids, models, index, sight, layer, positions=False):
+    """update_all of the finders `ids` (an int64 array of model indices, in update order) up
+    to its kernel: a Finding, whose args (_see_rows's, the rows aside) any thread may run,
+    then publish(). models(i) is the finder of index i (positions: models(k) the k-th of
+    ids)."""
     members = index._members
     if not members:
-        for k, i in enumerate(ids.tolist()):
-            models(k if positions else i).fiducials = []
-        return
+        return Finding([models(k if positions else i) for k, i in enumerate(ids.tolist())],
+                       None, None)
     # the kernel takes them in the order of their indices (each finder's update reads
     # nothing another writes): the same plan whatever order their worker queues gave
     if positions:
@@ -70,16 +73,47 @@ def update_ids(ids, models, index, sight, layer, positions=False):
             sp.rx0, sp.ry0, sp.nrx, sp.nry, sp.reg_count, sp.reg_static, sp.reg_dyn, st,
             sp.dyn_head, sp.ent_block, sp.ent_next, sp.ent_seq, sp.blk_model, sp.blk_zmin,
             sp.blk_zmax, sight.model_root, sight.visible, count, nearest, *out)
-    if n * m >= PARALLEL_CANDIDATES:
-        _see_all_parallel(*args)
-    else:
-        _see_rows(np.arange(n, dtype=np.int64), *args)
     step = _Seen(members, poses, out, count, nearest)
     if plan.any_nearest_only:       # what completing their readings takes, this step
         step.args = (fin.copy(),) + args[1:]        # (the plan's fin: the next update's)
         step.index, step.steps = index, index.steps
-    for i, f in enumerate(plan.finders):     # (their readings are made when asked)
-        f._seen = (step, i)
+    return Finding(plan.finders, args, step)
+
+
+class Finding:
+    """A step's finder updates made ready (prepare_ids): the finders, the kernel's args
+    (None: no fiducial-bearing model, nothing to see) and the _Seen they fill."""
+
+    __slots__ = ('finders', 'args', 'seen')
+
+    def __init__(self, finders, args, seen):
+        self.finders = finders
+        self.args = args
+        self.seen = seen
+
+    def pairs(self):
+        """The finder-candidate pairs (the work: each may cost a ray)."""
+        return 0 if self.args is None else len(self.finders) * len(self.seen.members)
+
+    def run(self):
+        """The kernel in this thread; from PARALLEL_CANDIDATES pairs, the finders shared
+        among numba's threads."""
+        if self.args is None:
+            return
+        if self.pairs() >= PARALLEL_CANDIDATES:
+            _see_all_parallel(*self.args)
+        else:
+            _see_rows(np.arange(len(self.finders), dtype=np.int64), *self.args)
+
+    def publish(self):
+        """Each finder's readings, those the kernel found (made when asked)."""
+        if self.args is None:
+            for f in self.finders:
+                f.fiducials = []
+            return
+        step = self.seen
+        for i, f in enumerate(self.finders):
+            f._seen = (step, i)
 
 
 def _plan(ids, models, index, sight, positions):
@@ -246,10 +280,10 @@ def _candidates(i, fin, xs, ys, order_x, order_y, by_rank, rank_at):
 
 
 @njit(cache=True)
-def _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at, key,
-             root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-             st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
-             model_root, visible, count, nearest, out_c, out_f, out_id):
+def see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at, key,
+            root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
+            st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
+            model_root, visible, count, nearest, out_c, out_f, out_id):
     """Finder i's update (fin: gx, gy, ga, body x, y, z, a, range_max, range_max_id, fov;
     ints: key, root, ignore_zloc, nearest only: if 1, nearest[i] alone (_see_nearest) and
     count[i] -1): its readings written to out from i * len(poses) on
@@ -298,7 +332,7 @@ def _see_nearest(i, cands, fin, ints, classes, poses, key, root, index, layer, p
                  nrx, nry, reg_count, reg_static, reg_dyn, st_first, dyn_head, ent_block,
                  ent_next, ent_seq, blk_model, blk_zmin, blk_zmax, model_root, visible,
                  nearest):
-    """Finder i's nearest[i] alone, as _see_one finds it (the first of the least range of
+    """Finder i's nearest[i] alone, as see_one finds it (the first of the least range of
     the candidates it sees), its readings not made: of the candidates that pass the rule's
     tests, the nearest not yet tried (ties in Stage's order), its ray cast, until one
     reaches its candidate. The rays to the others change nothing anyone reads."""
@@ -345,7 +379,7 @@ def _view_bounds(i, fin):
 @kernel
 def _in_view(i, c, fin, ints, key, root, poses, far, cosma, sinma, behind, below):
     """(whether finder i's rule keeps candidate c before the ray: key, tree, range, field of
-    view; its range, its bearing), the cheap tests first (_see_one's docstring); a range
+    view; its range, its bearing), the cheap tests first (see_one's docstring); a range
     of `below` or more is not kept (nor its bearing computed)."""
     if ints[i, 0] != key[c] or root[c] == ints[i, 1]:
         return False, 0.0, 0.0
@@ -381,14 +415,14 @@ def _see_rows(rows, fin, ints, classes, poses, order_x, order_y, by_rank, rank_a
               index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
               st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
               model_root, visible, count, nearest, out_c, out_f, out_id):
-    """The updates of the finders `rows` (_see_one), in this thread."""
+    """The updates of the finders `rows` (see_one), in this thread."""
     xs = poses[:, 0].copy()
     ys = poses[:, 1].copy()
     for i in rows:
-        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
-                 key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
-                 reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
-                 blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)
+        see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
+                key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
+                reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)
 
 
 @njit(parallel=True, cache=True)
@@ -404,7 +438,7 @@ def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, by_rank, rank
     half = (n + 1) // 2
     for j in prange(n):
         i = 2 * j if j < half else 2 * (j - half) + 1
-        _see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
-                 key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
-                 reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
-                 blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)
+        see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
+                key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
+                reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
+                blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)

@@ -166,16 +166,19 @@ def sample_angles(start, incr, count, out, at):
 
 
 @kernel
-def _scan_angles(origins, incr, offsets, angles):
+def scan_angles(origins, incr, offsets, angles):
+    """Every sensor's ray angles (sample_angles), from its offset in angles on."""
     for s in range(origins.shape[0]):
         sample_angles(origins[s, 3], incr[s], offsets[s + 1] - offsets[s], angles, offsets[s])
 
 
 @kernel
-def _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
-              nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
-              ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
-              out_model):
+def cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
+             nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
+             ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
+             out_model):
+    """Ray k (of sensor sensor[k], at angles[k]) cast: its range and the model it hit (or
+    -1) into out_range[k] and out_model[k]."""
     s = sensor[k]
     r, m = trace(origins[s, 0], origins[s, 1], origins[s, 2], angles[k], rmax[s], ppm,
                  ray_class[s], root[s], layer, rx0, ry0, nrx, nry, reg_count, reg_static,
@@ -192,12 +195,12 @@ def cast_scans(origins, incr, offsets, sensor, rmax, ray_class, root, layer, ppm
                out_model):
     """Every ray of every sensor (per sensor: its first ray's pose x, y, z, angle, its angle
     increment, its range; sensor[k] the sensor of ray k), in this thread."""
-    _scan_angles(origins, incr, offsets, angles)
+    scan_angles(origins, incr, offsets, angles)
     for k in range(sensor.shape[0]):
-        _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
-                  nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
-                  ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
-                  out_model)
+        cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
+                 nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
+                 ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
+                 out_model)
 
 
 @njit(parallel=True, cache=True)
@@ -206,9 +209,9 @@ def cast_scans_parallel(origins, incr, offsets, sensor, rmax, ray_class, root, l
                         ent_block, ent_next, ent_seq, blk_model, blk_zmin, blk_zmax,
                         model_root, model_rr, angles, out_range, out_model):
     """cast_scans, the rays shared among numba's threads."""
-    _scan_angles(origins, incr, offsets, angles)
+    scan_angles(origins, incr, offsets, angles)
     for k in prange(sensor.shape[0]):
-        _cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
-                  nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
-                  ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
-                  out_model)
+        cast_ray(k, sensor, origins, angles, rmax, ray_class, root, layer, ppm, rx0, ry0, nrx,
+                 nry, reg_count, reg_static, reg_dyn, st_ray, dyn_head, ent_block, ent_next,
+                 ent_seq, blk_model, blk_zmin, blk_zmax, model_root, model_rr, out_range,
+                 out_model)

@@ -294,14 +294,25 @@ class Space:
         increment, its range, its beam height's class and its robot's root model; offsets
         of each sensor's rays; sensor[k]: the sensor of ray k): (ranges m, models hit or -1).
         Many rays are shared among numba's threads, a few are cast in this one."""
+        args = self.cast_args(origins, incr, offsets, sensor, rmax, ray_class, root, layer)
+        run_cast(args)
+        return args[-2], args[-1]
+
+    def cast_args(self, origins, incr, offsets, sensor, rmax, ray_class, root, layer):
+        """cast()'s rays as raytrace.cast_scans takes them, the ranges and the models hit to
+        be written into its last two arrays (for a kernel that casts them beside other
+        work)."""
         n = sensor.shape[0]
-        out_range = np.empty(n, np.float64)
-        out_model = np.empty(n, np.int64)
-        angles = np.empty(n, np.float64)
-        cast = raytrace.cast_scans_parallel if n >= PARALLEL_RAYS else raytrace.cast_scans
-        cast(origins, incr, offsets, sensor, rmax, ray_class, root, layer, self.ppm, self.rx0,
-             self.ry0, self.nrx, self.nry, self.reg_count, self.reg_static, self.reg_dyn,
-             self.st_ray, self.dyn_head, self.ent_block, self.ent_next, self.ent_seq,
-             self.blk_model, self.blk_zmin, self.blk_zmax, self.model_root, self.model_rr,
-             angles, out_range, out_model)
-        return out_range, out_model
+        return (origins, incr, offsets, sensor, rmax, ray_class, root, layer, self.ppm,
+                self.rx0, self.ry0, self.nrx, self.nry, self.reg_count, self.reg_static,
+                self.reg_dyn, self.st_ray, self.dyn_head, self.ent_block, self.ent_next,
+                self.ent_seq, self.blk_model, self.blk_zmin, self.blk_zmax, self.model_root,
+                self.model_rr, np.empty(n, np.float64), np.empty(n, np.float64),
+                np.empty(n, np.int64))
+
+
+def run_cast(args):
+    """raytrace.cast_scans of Space.cast_args's args; from PARALLEL_RAYS rays on, shared among
+    numba's threads."""
+    parallel = args[3].shape[0] >= PARALLEL_RAYS
+    (raytrace.cast_scans_parallel if parallel else raytrace.cast_scans)(*args)

@@ -42,13 +42,14 @@ from .camera import CameraRig
 from .casts import RangerCasts
 from .energy import Energy
 from .fiducial import Fiducial, FiducialIndex
-from .finders import update_ids
+from .finders import prepare_ids as prepare_finders
 from .glibc_random import Rand48, Random
 from .motion import Chains, Motion, elements
 from .noise import RangerNoise
 from .robot_state import MODE_CODE, RobotArrays
 from .runtime_models import redraw_if_changed
 from .scheduler import CB_UPDATE, Scheduler
+from .sensing import sense
 from .sight import Sight
 from .stage_api import api_of
 from .step_each import RobotByRobot
@@ -326,15 +327,22 @@ class World(RangerCasts, RobotByRobot):
         rangers = self._ranger_slot[every]
         is_ranger = rangers >= 0
         rangers = rangers[is_ranger]
+        casting = finding = None
         if rangers.size:
-            self.cast_ranger_slots(rangers, sensing, self._stale(updated, is_ranger), before)
+            casting = self.ranger_slots_casting(rangers, sensing,
+                                                self._stale(updated, is_ranger), before)
         if self._any_finder:
             is_finder = self._kind[Fiducial]
             finders = [ids[is_finder[ids]] for ids in updated[1:]]
             finders = np.concatenate(finders) if finders else None
             if finders is not None and finders.size:
-                update_ids(finders, models.__getitem__, self.fiducial_index, self.sight,
-                           sensing)
+                finding = prepare_finders(finders, models.__getitem__, self.fiducial_index,
+                                          self.sight, sensing)
+        sense(casting, finding)     # the rays and the finders, in one region when worth it
+        if casting is not None:
+            self.end_casts(casting)
+        if finding is not None:
+            finding.publish()
         self._call_updates(every, with_callbacks)
         scheduler.call_world(self)
         if self._packs:
