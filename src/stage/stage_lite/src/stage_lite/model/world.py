@@ -30,6 +30,7 @@ interval_sim:
    the world's callbacks, then the energy model's charge update (energy.py);
 5. stageros publishes: odom = the estimate and the velocity, ground truth = the world pose.
 """
+import bisect
 import gc
 import math
 import os
@@ -387,19 +388,16 @@ class World(RangerCasts, RobotByRobot):
         of models of one batch together."""
         scheduler = self.scheduler
         models = self.models
-        # Python lists: a step calls a few callbacks, and numpy's calls on a few numbers
-        # cost more than the loop
+        # Python lists for the loop (a step calls a few callbacks, and numpy's calls on a few
+        # numbers cost more than the loop); arrays for a batch's rows
         order = every.tolist()
-        at = np.flatnonzero(with_callbacks[every]).tolist()
-        bids = self._batch_id[every[at]].tolist()
+        at, bids, ends = self._callback_runs(every, with_callbacks, 0)
         j = 0
         while j < len(at):
-            p = at[j]
+            p = int(at[j])
             b = bids[j]
             if b:
-                k = j + 1
-                while k < len(at) and bids[k] == b:
-                    k += 1
+                k = ends[bisect.bisect_right(ends, j)]      # the end of its batch's run
                 done = self._run_batch(b, self._batch_row[every[at[j:k]]])
                 j += done
                 if done:
@@ -409,8 +407,22 @@ class World(RangerCasts, RobotByRobot):
             j += 1
             if scheduler.version != version:      # callbacks changed: look again
                 _, with_callbacks = self._masks()
-                at = at[:j] + (p + 1 + np.flatnonzero(with_callbacks[every[p + 1:]])).tolist()
-                bids = self._batch_id[every[at]].tolist()
+                rest, bids_rest, _ = self._callback_runs(every, with_callbacks, p + 1)
+                at = np.concatenate((at[:j], rest))
+                bids = bids[:j] + bids_rest
+                ends = self._run_ends(np.array(bids, np.int64))
+
+    def _callback_runs(self, every, with_callbacks, start):
+        """(the places in `every` from `start` on of the models with update callbacks, an
+        array; their batches, a list; the ends of the runs of one batch, a list)."""
+        at = start + np.flatnonzero(with_callbacks[every[start:]])
+        bids = self._batch_id[every[at]]
+        return at, bids.tolist(), self._run_ends(bids)
+
+    @staticmethod
+    def _run_ends(bids):
+        """Where each run of equal batch numbers (an array) ends (exclusive), in order."""
+        return (np.flatnonzero(bids[1:] != bids[:-1]) + 1).tolist() + [len(bids)]
 
     def _run_batch(self, b, rows):
         """Batch b's callbacks of the rows `rows` (its plan's), in turn: how many were
