@@ -52,6 +52,33 @@ def _store_beams(rng, hit, rr, beams, ranges, intensities):
 
 
 @njit(cache=True)
+def _slot_rows(slots, off, n, stale):
+    """_sorted_due of the sensors of the ranger slots `slots` (ranger k's sensors
+    off[k]..off[k + 1] - 1, in the slots' order): (the positions, each due sensor's row (its
+    last copy's)), and per position whether it casts from before the move: the first copy
+    of a sensor of a slot whose `stale` is true (stale empty: none)."""
+    total = 0
+    for j in range(slots.shape[0]):
+        total += off[slots[j] + 1] - off[slots[j]]
+    due = np.empty(total, np.int64)
+    k = 0
+    for j in range(slots.shape[0]):
+        for v in range(off[slots[j]], off[slots[j] + 1]):
+            due[k] = v
+            k += 1
+    positions, last, first = _sorted_due(due, n)
+    stale_rows = np.zeros(total, np.bool_)
+    if stale.shape[0]:
+        k = 0
+        for j in range(slots.shape[0]):
+            for _ in range(off[slots[j]], off[slots[j] + 1]):
+                if stale[j]:
+                    stale_rows[first[k]] = True
+                k += 1
+    return positions, last, stale_rows
+
+
+@njit(cache=True)
 def _ranges_of(starts, ends):
     """The integers starts[0]..ends[0]-1, starts[1]..ends[1]-1, ... in one int64 array."""
     total = 0
@@ -254,16 +281,27 @@ class RangerCasts:
     def begin_casts(self, due=None, layer=None, stale=None, before=None):
         """cast_rays up to its rays (a Casting: its args for raytrace.cast_scans, in any
         thread); end_casts then stores the readings."""
-        if layer is None:
-            layer = (self.updates + 1) % 2
         due = self._all_sensors if due is None else np.asarray(due, np.int64)
-        every = len(due) == len(self._sensors)
-        # rows: each due sensor's row of the cast (its last, as a dict of them would say)
-        if every:
-            positions = self._all_sensors
-            rows = due
+        if len(due) == len(self._sensors):
+            positions, rows, stale_rows = self._all_sensors, due, None
+            if stale is not None and stale.any():
+                stale_rows = np.zeros(len(positions), np.bool_)
+                stale_rows[due[stale]] = True
         else:
             positions, rows, first = _sorted_due(due, len(self._sensors))
+            stale_rows = None
+            if stale is not None and stale.any():
+                stale_rows = np.zeros(len(positions), np.bool_)
+                stale_rows[first[stale]] = True
+        return self._casting(positions, rows, stale_rows, before, layer)
+
+    def _casting(self, positions, rows, stale_rows, before, layer):
+        """begin_casts of the sensors `positions` (sorted), rows: each due sensor's row of
+        the cast (its last, as a dict of them would say), stale_rows: None or per position
+        whether it casts from `before`."""
+        if layer is None:
+            layer = (self.updates + 1) % 2
+        every = len(positions) == len(self._sensors)
         tables = self._rays if every else self._subset_tables(positions)
         origins = tables['origins']
         if self.motion is not None:
@@ -272,10 +310,7 @@ class RangerCasts:
             for i, k in enumerate(positions.tolist()):
                 g, s = self._sensors[k]
                 origins[i] = g.ray_origin(s)
-        stale_rows = None
-        if stale is not None and stale.any():
-            stale_rows = np.zeros(len(positions), np.bool_)
-            stale_rows[due[stale] if every else first[stale]] = True
+        if stale_rows is not None:
             self._stale_origins(positions, stale_rows, before, origins)
         args = self.space.cast_args(origins, tables['incr'], tables['offsets'],
                                     tables['sensor'], tables['rmax'], tables['ray_class'],
@@ -297,11 +332,11 @@ class RangerCasts:
         """begin_casts of every sensor of the rangers `slots` (int64 array of ranger slots,
         in the order they updated); stale: a bool per slot, its sensors cast from
         `before`."""
-        sensors = self._slot_indices(slots)[0]
-        if stale is not None:
-            off = self._ranger_sensor_off
-            stale = np.repeat(stale, off[slots + 1] - off[slots])
-        return self.begin_casts(sensors, layer, stale, before)
+        positions, rows, stale_rows = _slot_rows(
+            slots, self._ranger_sensor_off, len(self._sensors),
+            np.zeros(0, np.bool_) if stale is None else stale)
+        return self._casting(positions, rows, stale_rows if stale_rows.any() else None,
+                             before, layer)
 
     def _stale_origins(self, positions, stale_rows, before, origins):
         """origins[i] of the sensors positions[i] where stale_rows[i]: from their robots'
