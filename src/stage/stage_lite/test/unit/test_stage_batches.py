@@ -10,7 +10,6 @@ from stage_lite.controllers import _fasr2_batch as fasr2_batch
 from stage_lite.controllers import _fasr_batch as fasr_batch
 from stage_lite.controllers import fasr, fasr2
 from stage_lite.model import fiducial as fiducial_module
-from stage_lite.model import finders as finders_module
 from stage_lite.model import sensing
 from stage_lite.model import world as world_module
 from stage_lite.model.jit import numba_threads
@@ -231,7 +230,7 @@ def test_fasrs_batches_are_its_updates_one_by_one(monkeypatch):
 
 @pytest.mark.parametrize('robots', [12, 34])     # 34 * 34 pairs: the threads' kernel
 def test_the_finders_kernel_is_their_rule_one_by_one(tmp_path, monkeypatch, robots):
-    assert (robots * robots >= finders_module.PARALLEL_CANDIDATES) == (robots == 34)
+    assert (robots * robots >= sensing.PARALLEL_CANDIDATES) == (robots == 34)
     path = flocking_world(tmp_path, robots, 7, 0.7)
     fast, each = load_world(path, seed=5, stageros=False), load_world(path, seed=5,
                                                                        stageros=False)
@@ -304,7 +303,8 @@ def test_a_finder_read_for_its_nearest_only_finds_the_same_nearest(tmp_path, rob
 
 def test_the_rays_and_the_finders_together_read_as_apart(tmp_path, monkeypatch):
     """sensing.sense: a step's rays and finders in one parallel region give the bits of the
-    two kernels apart (each thread takes every other ray and finder)."""
+    two kernels apart, each in this thread (each thread takes every other ray and
+    finder)."""
     if numba_threads() < 2:
         pytest.skip('one numba thread: the rays and finders are never together')
     path = flocking_world(tmp_path, 34, 7, 0.7)
@@ -319,6 +319,7 @@ def test_the_rays_and_the_finders_together_read_as_apart(tmp_path, monkeypatch):
         together.step()
         with monkeypatch.context() as m:
             m.setattr(sensing, 'TOGETHER_WORK', 10 ** 9)
+            m.setattr(sensing, 'PARALLEL_CANDIDATES', 10 ** 9)
             apart.step()
         assert_same(snapshot(together), snapshot(apart), step)
         assert [together.models[f.index].nearest() for f in finders] == [

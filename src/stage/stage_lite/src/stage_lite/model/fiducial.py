@@ -57,8 +57,8 @@ from operator import attrgetter, itemgetter
 import numpy as np
 
 from . import models
-from .finders import update_all
 from .pose import pose_add, stage_normalize
+from .sensing import update_all
 
 DEFAULT_RANGE_MAX = 8.0          # max_range_anon, m
 DEFAULT_RANGE_MAX_ID = 5.0       # max_range_id, m
@@ -101,7 +101,7 @@ class FiducialIndex:
         self.poses = python_poses
         self._constants = {}
         self._finder_row = {}
-        self.finder_sets = {}       # finders.update_all's plans per list of finders
+        self.finder_sets = {}       # finders.prepare_ids's plans per set of finders
         # changes with the members, their returns or anyone's key (set_return, set_key)
         self.version = 0
         self.steps = 0          # begin_step's count

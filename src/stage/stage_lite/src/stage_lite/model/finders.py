@@ -1,50 +1,39 @@
 """Every due fiducial finder's update of a step in one numba kernel (no rospy).
 
-update_all does for each finder what fiducial.Fiducial.update_one_by_one does, the same
-rule in the same order (fiducial.py's docstring): the candidates from the index's sets (its
-bounds bisected as Python's bisect does), key, range, field of view and tree, and a ray
-(raytrace.trace with sight.py's rule) per candidate left; the readings' numbers are kept
-(_Seen) until a controller reads them (Fiducial.fiducials makes them, Fiducial.nearest and
-fiducial.last_nearest_of read the nearest without). From PARALLEL_CANDIDATES
-finder-candidate pairs the finders are shared among numba's threads, each writing its own
-rows. What changes only with the finders' sets is kept per set of finders (_FinderPlan).
+The kernel (see_one per finder; sensing.update_all and sensing.sense run it, on numba's
+threads beside the step's rays when there is enough work) does for each finder what
+fiducial.Fiducial.update_one_by_one does, the same rule in the same order (fiducial.py's
+docstring): the candidates from the index's sets (its bounds bisected as Python's bisect
+does), key, range, field of view and tree, and a ray (raytrace.trace with sight.py's rule)
+per candidate left; the readings' numbers are kept (_Seen) until a controller reads them
+(Fiducial.fiducials makes them, Fiducial.nearest and fiducial.last_nearest_of read the
+nearest without), each finder writing its own rows. What changes only with the finders'
+sets is kept per set of finders (_FinderPlan).
 """
 import math
 from operator import attrgetter
 
 import numpy as np
 
-from .jit import kernel, njit, prange
+from .jit import kernel, njit
 from .motion import normalize
 from .motion import pose_add as pose_add_kernel
 from .raytrace import trace
 
-#: From this many finder-candidate pairs in a step, the finders are shared among numba's
-#: threads (each pair may cost a ray).
-PARALLEL_CANDIDATES = 1000
 _KEY = attrgetter('fiducial_key')
 _RETURN = attrgetter('fiducial_return')
 
 
-def update_all(finders, index, sight, layer):
-    """ModelFiducial::Update of each finder in turn, as Fiducial.update_one_by_one does it,
-    in one kernel: the candidates (index's sets, their global poses now), the rule and the
-    rays (sight's). Nothing moves between the finders' updates, so the poses are read once."""
-    ids = np.fromiter((f.index for f in finders), np.int64, len(finders))
-    finding = prepare_ids(ids, finders.__getitem__, index, sight, layer, positions=True)
-    finding.run()
-    finding.publish()
-
-
 def prepare_ids(ids, models, index, sight, layer, positions=False):
-    """update_all of the finders `ids` (an int64 array of model indices, in update order) up
-    to its kernel: a Finding, whose args (_see_rows's, the rows aside) any thread may run,
-    then publish(). models(i) is the finder of index i (positions: models(k) the k-th of
+    """ModelFiducial::Update of the finders `ids` (an int64 array of model indices, in update
+    order) up to the kernel: a Finding, whose args (see_one's, for rows i) any thread may
+    run, then publish(). Nothing moves between the finders' updates, so the poses are read
+    once. models(i) is the finder of index i (positions: models(k) the k-th of
     ids)."""
     members = index._members
     if not members:
         return Finding([models(k if positions else i) for k, i in enumerate(ids.tolist())],
-                       None, None)
+                       None, None, sight.space)
     # the kernel takes them in the order of their indices (each finder's update reads
     # nothing another writes): the same plan whatever order their worker queues gave
     if positions:
@@ -77,32 +66,29 @@ def prepare_ids(ids, models, index, sight, layer, positions=False):
     if plan.any_nearest_only:       # what completing their readings takes, this step
         step.args = (fin.copy(),) + args[1:]        # (the plan's fin: the next update's)
         step.index, step.steps = index, index.steps
-    return Finding(plan.finders, args, step)
+    return Finding(plan.finders, args, step, sight.space)
 
 
 class Finding:
     """A step's finder updates made ready (prepare_ids): the finders, the kernel's args
-    (None: no fiducial-bearing model, nothing to see) and the _Seen they fill."""
+    (None: no fiducial-bearing model, nothing to see), the _Seen they fill, the space their
+    rays walk."""
 
-    __slots__ = ('finders', 'args', 'seen')
+    __slots__ = ('finders', 'args', 'seen', 'space')
 
-    def __init__(self, finders, args, seen):
+    def __init__(self, finders, args, seen, space):
         self.finders = finders
         self.args = args
         self.seen = seen
+        self.space = space
 
     def pairs(self):
         """The finder-candidate pairs (the work: each may cost a ray)."""
         return 0 if self.args is None else len(self.finders) * len(self.seen.members)
 
     def run(self):
-        """The kernel in this thread; from PARALLEL_CANDIDATES pairs, the finders shared
-        among numba's threads."""
-        if self.args is None:
-            return
-        if self.pairs() >= PARALLEL_CANDIDATES:
-            _see_all_parallel(*self.args)
-        else:
+        """The kernel, every finder in this thread."""
+        if self.args is not None:
             _see_rows(np.arange(len(self.finders), dtype=np.int64), *self.args)
 
     def publish(self):
@@ -193,7 +179,7 @@ class _FinderPlan:
 
 
 class _Seen:
-    """What update_all's kernel found: the members, their poses, the readings' numbers (each
+    """What the finders' kernel found: the members, their poses, the readings' numbers (each
     finder's from i * len(members) on, count[i] of them), each finder's nearest. A finder
     that reads its nearest only (count[i] -1) has its readings completed when asked, in the
     same step (complete)."""
@@ -419,25 +405,6 @@ def _see_rows(rows, fin, ints, classes, poses, order_x, order_y, by_rank, rank_a
     xs = poses[:, 0].copy()
     ys = poses[:, 1].copy()
     for i in rows:
-        see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
-                key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
-                reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
-                blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id)
-
-
-@njit(parallel=True, cache=True)
-def _see_all_parallel(fin, ints, classes, poses, order_x, order_y, by_rank, rank_at, key, root,
-                      index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static, reg_dyn,
-                      st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,
-                      blk_zmax, model_root, visible, count, nearest, out_c, out_f, out_id):
-    """_see_rows of every finder, shared among numba's threads (each writes its own rows),
-    dealt out in turn (neighbouring finders, whose work is alike, to different threads)."""
-    xs = poses[:, 0].copy()
-    ys = poses[:, 1].copy()
-    n = fin.shape[0]
-    half = (n + 1) // 2
-    for j in prange(n):
-        i = 2 * j if j < half else 2 * (j - half) + 1
         see_one(i, fin, ints, classes, poses, xs, ys, order_x, order_y, by_rank, rank_at,
                 key, root, index, ret, layer, ppm, rx0, ry0, nrx, nry, reg_count, reg_static,
                 reg_dyn, st_first, dyn_head, ent_block, ent_next, ent_seq, blk_model, blk_zmin,

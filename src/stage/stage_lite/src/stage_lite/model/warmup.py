@@ -179,7 +179,7 @@ def warm_sensors(world):
     """The fiducial finder's and the blobfinder's rays (sight.py's kernel), and the
     finders' kernel for many finders at once (the threads')."""
     from .fiducial import FiducialIndex
-    from .finders import PARALLEL_CANDIDATES, update_all
+    from .sensing import PARALLEL_CANDIDATES, update_all
     from .sight import Sight
     sight = Sight(world.models, world.robots, world.space)
     index = FiducialIndex(world.models)
