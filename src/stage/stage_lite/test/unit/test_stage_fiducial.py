@@ -393,3 +393,20 @@ def test_every_digit_of_real_stages_first_readings(name):
             readings = finder.update(index, sight, layer)
             assert [' '.join([r.model.name] + [_g(v) for v in (r.range, r.bearing) + r.geom]
                              + [str(r.id)]) for r in readings] == fiducials
+
+
+def test_the_sets_sorted_again_from_the_last_order_are_numpys_stable_sort():
+    """FiducialIndex.begin_step sorts the last step's orders again by insertion (fiducial
+    _resort): the order np.lexsort gives, ties of coordinate and rank by place, from any
+    starting order."""
+    from stage_lite.model.fiducial import _resort
+    gen = np.random.default_rng(3)
+    for trial in range(200):
+        n = int(gen.integers(1, 40))
+        poses = gen.integers(-3, 4, (n, 4)).astype(np.float64) * 0.5    # many ties
+        poses[gen.random(n) < 0.2, 0] = -0.0
+        ranks = gen.integers(0, 6, n).astype(np.float64)                # some ties too
+        for axis in (0, 1):
+            order = gen.permutation(n).astype(np.int64)
+            _resort(order, poses, axis, ranks)
+            assert order.tolist() == np.lexsort((ranks, poses[:, axis])).tolist(), trial

@@ -127,7 +127,8 @@ def test_dynamic_on_a_robot_carries_its_boxes_as_the_real_stage(capsys):
         robot.set_speed(*speed)
     real_pose = {(int(p[1]), p[2]): [float(v) for v in p[3:6]] + [int(p[6])] for p in poses}
     laser = world.robots[1].rangers[0].model
-    slot = np.array([world._ranger_slot[laser.index]], np.int64)
+    slot = world._ranger_slot[laser.index]
+    sensors = np.arange(world._ranger_sensor_off[slot], world._ranger_sensor_off[slot + 1])
     after_the_moves = 0
 
     def poses_equal(k):
@@ -139,7 +140,7 @@ def test_dynamic_on_a_robot_carries_its_boxes_as_the_real_stage(capsys):
     poses_equal(1)
     for k in range(2, len(poses) // 2):
         stream = world.random.state()             # a cast draws each beam's noise
-        world.cast_rays(world._slot_indices(slot)[0], (world.updates + 1) % 2)
+        world.cast_rays(sensors, (world.updates + 1) % 2)
         before_the_moves = laser.sensors[0].ranges.tolist()
         world.random.table[:], world.random.pointers[:] = stream
         world.step()

@@ -78,6 +78,17 @@ def _slot_rows(slots, off, n, stale):
     return positions, last, stale_rows
 
 
+@kernel
+def _copy_views(slots, src_off, dst_off, count, beam_ranges, beam_intensities, view_ranges,
+                view_intensities):
+    """The views of the rangers `slots`: each view's count[k] beams from src_off[k] in the
+    beam arrays to dst_off[k] in the views' float32 arrays."""
+    for k in slots:
+        for t in range(count[k]):
+            view_ranges[dst_off[k] + t] = beam_ranges[src_off[k] + t]
+            view_intensities[dst_off[k] + t] = beam_intensities[src_off[k] + t]
+
+
 @njit(cache=True)
 def _ranges_of(starts, ends):
     """The integers starts[0]..ends[0]-1, starts[1]..ends[1]-1, ... in one int64 array."""
@@ -180,7 +191,6 @@ class RangerCasts:
                 self._view_intensities[at] = v.intensities
                 v.ranges = self._view_ranges[at]
                 v.intensities = self._view_intensities[at]
-        self._slots_cache = {}
         self._views_without_data = sum(1 for v in views if v is not None and not v.has_data)
 
     def _worker_race(self, seed):
@@ -257,9 +267,9 @@ class RangerCasts:
 
     def _refresh_view_slots(self, slots):
         """_refresh_views of the rangers `slots` (int64 array of ranger slots), at once."""
-        _, dst, src = self._slot_indices(slots)
-        self._view_ranges[dst] = self._beam_ranges[src]
-        self._view_intensities[dst] = self._beam_intensities[src]
+        _copy_views(slots, self._view_src_off, self._view_dst_off, self._view_count,
+                    self._beam_ranges, self._beam_intensities, self._view_ranges,
+                    self._view_intensities)
         if self._views_without_data:
             for k in slots.tolist():
                 v = self._view_of_slot[k]
@@ -356,23 +366,6 @@ class RangerCasts:
                 origins[i] = g.ray_origin(s)
             finally:
                 model.pose = keep
-
-    def _slot_indices(self, slots):
-        """(their sensors, their views' beams, the sensor beams those views show) of the
-        rangers `slots`, kept for the next step with the same rangers."""
-        key = slots.tobytes()
-        cached = self._slots_cache.get(key)
-        if cached is None:
-            if len(self._slots_cache) > 64:
-                self._slots_cache.clear()
-            off = self._ranger_sensor_off
-            src = self._view_src_off[slots]
-            dst = self._view_dst_off[slots]
-            count = self._view_count[slots]
-            cached = self._slots_cache[key] = (_ranges_of(off[slots], off[slots + 1]),
-                                               _ranges_of(dst, dst + count),
-                                               _ranges_of(src, src + count))
-        return cached
 
     def _draw_noise(self, rng, tables, rows, positions, layer, stale_origins=None):
         """Stage's draws of each sensor (rows of the cast of `tables`, _ray_tables's of the

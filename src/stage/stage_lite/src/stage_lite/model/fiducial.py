@@ -57,6 +57,7 @@ from operator import attrgetter, itemgetter
 import numpy as np
 
 from . import models
+from .jit import kernel
 from .pose import pose_add, stage_normalize
 from .sensing import update_all
 
@@ -150,10 +151,17 @@ class FiducialIndex:
         last = self._sorted_for
         if last is not None and last[0] is constants and np.array_equal(last[1], poses):
             return                  # the same models where they were: the same orders
+        if last is not None and last[0] is constants:
+            # the same models, moved a little: the last orders sorted again from where they
+            # were (by x or y, then rank: one order, ranks being distinct), few swaps
+            self._order_x = self._order_x.copy()
+            self._order_y = self._order_y.copy()
+            _resort(self._order_x, poses, 0, self._ranks)
+            _resort(self._order_y, poses, 1, self._ranks)
+        else:
+            self._order_x = np.lexsort((self._ranks, poses[:, 0]))
+            self._order_y = np.lexsort((self._ranks, poses[:, 1]))
         self._sorted_for = (constants, poses)
-        # stable sorts: equal (x, rank) keep the models' order, as sorted() does
-        self._order_x = np.lexsort((self._ranks, poses[:, 0]))
-        self._order_y = np.lexsort((self._ranks, poses[:, 1]))
 
     def constants(self, models):
         """(root indices, model indices, ranks, the models' places by rank, each model's
@@ -202,6 +210,26 @@ class FiducialIndex:
         horiz = _above([members[k] for k in self._order_x.tolist()], 0, x - rng, x + rng)
         vert = _above([members[k] for k in self._order_y.tolist()], 1, y - rng, y + rng)
         return sorted(horiz & vert, key=self.rank)
+
+
+@kernel
+def _resort(order, poses, axis, ranks):
+    """order (the models' places) sorted in place by (poses[., axis], ranks[.], place) by
+    insertion from where it is: np.lexsort((ranks, poses[:, axis])) (a stable sort: the
+    place last), in a few swaps when the models moved little."""
+    for i in range(1, order.shape[0]):
+        v = order[i]
+        key = poses[v, axis]
+        rank = ranks[v]
+        j = i - 1
+        while j >= 0:
+            u = order[j]
+            if poses[u, axis] < key or (poses[u, axis] == key and (
+                    ranks[u] < rank or (ranks[u] == rank and u < v))):
+                break
+            order[j + 1] = u
+            j -= 1
+        order[j + 1] = v
 
 
 def _above(ordered, axis, lo, hi):
