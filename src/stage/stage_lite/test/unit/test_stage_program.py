@@ -6,7 +6,7 @@ import pytest
 from course_common.processes import run_to_exit, spawn
 from course_common.testing import wait_for
 from course_common.waiting import WaitError
-from stage_lite.node.stage_program import clock_line
+from stage_lite.node.stage_program import by_ctrl_c, clock_line
 
 RUN_DEADLINE_S = 60.0
 WORLD = '''resolution 0.02
@@ -136,3 +136,24 @@ def test_with_its_window_it_runs_at_the_worlds_speedup_and_ends_at_quit_time(tmp
     assert out.startswith('Stage 4.3.0 (stage_lite) \n') and 'GUI disabled' not in out
     assert 'running without' not in out, out      # the window opened on the display
     assert out.rstrip().endswith('[Stage: done]') and 'Traceback' not in out
+
+
+def test_ctrl_c_surfacing_inside_a_kernel_s_call_is_still_ctrl_c():
+    """A kernel that returns arrays calls back into Python to box them (numba's
+    _numba_unpickle); Ctrl-C there surfaces as a SystemError of the kernel's call, caused by
+    one of the callback, caused by the KeyboardInterrupt: still Ctrl-C (exit 130), and other
+    errors are not."""
+    def kernel_call():
+        try:
+            try:
+                raise KeyboardInterrupt
+            except KeyboardInterrupt as interrupt:
+                raise SystemError('_numba_unpickle returned a result with an exception set'
+                                  ) from interrupt
+        except SystemError as boxing:
+            raise SystemError('CPUDispatcher returned a result with an exception set'
+                              ) from boxing
+    with pytest.raises(SystemError) as caught:
+        kernel_call()
+    assert by_ctrl_c(caught.value) and by_ctrl_c(KeyboardInterrupt())
+    assert not by_ctrl_c(SystemError('a kernel failed')) and not by_ctrl_c(ValueError())

@@ -82,6 +82,17 @@ class Program:
             pass
 
 
+def by_ctrl_c(err):
+    """Whether err is Ctrl-C's KeyboardInterrupt, or an error it caused: numba boxes the
+    arrays a kernel returns with a call back into Python, where the interrupt may surface,
+    and the kernel's call then fails with a SystemError whose cause it is."""
+    while err is not None:
+        if isinstance(err, KeyboardInterrupt):
+            return True
+        err = err.__cause__
+    return False
+
+
 def load(args, out):
     """The world and its controllers, or one FATAL line on a line of its own and exit 1."""
     from ..model.world import WorldError, load_world
@@ -156,7 +167,9 @@ def main(argv=None):
     try:
         if args.headless or not run_window(program):
             program.run_headless()
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, SystemError) as err:
+        if not by_ctrl_c(err):
+            raise
         out.write('\n[Stage: interrupted]\n')
         out.flush()
         sys.exit(EXIT_INTERRUPTED)
