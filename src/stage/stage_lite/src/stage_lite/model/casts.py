@@ -57,17 +57,9 @@ def _slot_rows(slots, off, n, stale):
     off[k]..off[k + 1] - 1, in the slots' order): (the positions, each due sensor's row (its
     last copy's)), and per position whether it casts from before the move: the first copy
     of a sensor of a slot whose `stale` is true (stale empty: none)."""
-    total = 0
-    for j in range(slots.shape[0]):
-        total += off[slots[j] + 1] - off[slots[j]]
-    due = np.empty(total, np.int64)
-    k = 0
-    for j in range(slots.shape[0]):
-        for v in range(off[slots[j]], off[slots[j] + 1]):
-            due[k] = v
-            k += 1
+    due = _ranges_of(off[slots], off[slots + 1])
     positions, last, first = _sorted_due(due, n)
-    stale_rows = np.zeros(total, np.bool_)
+    stale_rows = np.zeros(due.shape[0], np.bool_)
     if stale.shape[0]:
         k = 0
         for j in range(slots.shape[0]):
@@ -292,17 +284,14 @@ class RangerCasts:
         """cast_rays up to its rays (a Casting: its args for raytrace.cast_scans, in any
         thread); end_casts then stores the readings."""
         due = self._all_sensors if due is None else np.asarray(due, np.int64)
-        if len(due) == len(self._sensors):
-            positions, rows, stale_rows = self._all_sensors, due, None
-            if stale is not None and stale.any():
-                stale_rows = np.zeros(len(positions), np.bool_)
-                stale_rows[due[stale]] = True
+        if len(due) == len(self._sensors):     # each its own row, its only copy
+            positions, rows, first = self._all_sensors, due, due
         else:
             positions, rows, first = _sorted_due(due, len(self._sensors))
-            stale_rows = None
-            if stale is not None and stale.any():
-                stale_rows = np.zeros(len(positions), np.bool_)
-                stale_rows[first[stale]] = True
+        stale_rows = None
+        if stale is not None and stale.any():
+            stale_rows = np.zeros(len(positions), np.bool_)
+            stale_rows[first[stale]] = True
         return self._casting(positions, rows, stale_rows, before, layer)
 
     def _casting(self, positions, rows, stale_rows, before, layer):

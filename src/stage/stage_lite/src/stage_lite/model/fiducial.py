@@ -153,7 +153,7 @@ class FiducialIndex:
             return                  # the same models where they were: the same orders
         if last is not None and last[0] is constants:
             # the same models, moved a little: the last orders sorted again from where they
-            # were (by x or y, then rank: one order, ranks being distinct), few swaps
+            # were (np.lexsort's orders, _resort), in few swaps
             self._order_x = self._order_x.copy()
             self._order_y = self._order_y.copy()
             _resort(self._order_x, poses, 0, self._ranks)

@@ -24,25 +24,18 @@ _KEY = attrgetter('fiducial_key')
 _RETURN = attrgetter('fiducial_return')
 
 
-def prepare_ids(ids, models, index, sight, layer, positions=False):
+def prepare_ids(ids, models, index, sight, layer):
     """ModelFiducial::Update of the finders `ids` (an int64 array of model indices, in update
-    order) up to the kernel: a Finding, whose args (see_one's, for rows i) any thread may
-    run, then publish(). Nothing moves between the finders' updates, so the poses are read
-    once. models(i) is the finder of index i (positions: models(k) the k-th of
-    ids)."""
+    order; models(i) is the finder of index i) up to the kernel: a Finding, whose args
+    (see_one's, for rows i) any thread may run, then publish(). Nothing moves between the
+    finders' updates, so the poses are read once."""
     members = index._members
     if not members:
-        return Finding([models(k if positions else i) for k, i in enumerate(ids.tolist())],
-                       None, None, sight.space)
+        return Finding([models(i) for i in ids.tolist()], None, None, sight.space, layer)
     # the kernel takes them in the order of their indices (each finder's update reads
     # nothing another writes): the same plan whatever order their worker queues gave
-    if positions:
-        order = np.argsort(ids, kind='stable')
-        ids = ids[order]
-        models = [models(k) for k in order.tolist()].__getitem__
-    else:
-        ids = np.sort(ids)
-    plan = _plan(ids, models, index, sight, positions)
+    ids = np.sort(ids)
+    plan = _plan(ids, models, index, sight)
     n, m = len(plan.finders), len(members)
     member_root, member_index, _, by_rank, rank_at = index.constants(members)
     # the members' and the finders' global poses, the finders' bodies' frames: one call
@@ -66,21 +59,22 @@ def prepare_ids(ids, models, index, sight, layer, positions=False):
     if plan.any_nearest_only:       # what completing their readings takes, this step
         step.args = (fin.copy(),) + args[1:]        # (the plan's fin: the next update's)
         step.index, step.steps = index, index.steps
-    return Finding(plan.finders, args, step, sight.space)
+    return Finding(plan.finders, args, step, sight.space, layer)
 
 
 class Finding:
     """A step's finder updates made ready (prepare_ids): the finders, the kernel's args
     (None: no fiducial-bearing model, nothing to see), the _Seen they fill, the space their
-    rays walk."""
+    rays walk and the grid layer they read."""
 
-    __slots__ = ('finders', 'args', 'seen', 'space')
+    __slots__ = ('finders', 'args', 'seen', 'space', 'layer')
 
-    def __init__(self, finders, args, seen, space):
+    def __init__(self, finders, args, seen, space, layer):
         self.finders = finders
         self.args = args
         self.seen = seen
         self.space = space
+        self.layer = layer
 
     def pairs(self):
         """The finder-candidate pairs (the work: each may cost a ray)."""
@@ -102,7 +96,7 @@ class Finding:
             f._seen = (step, i)
 
 
-def _plan(ids, models, index, sight, positions):
+def _plan(ids, models, index, sight):
     """The _FinderPlan of the finders `ids` with index's members now, kept per list of
     finders (a run's updates take the same finders again and again)."""
     key = (ids.tobytes(), sight)
@@ -111,7 +105,7 @@ def _plan(ids, models, index, sight, positions):
     if plan is None or plan.version != index.version:
         if len(cache) > 64:
             cache.clear()
-        finders = [models(k if positions else i) for k, i in enumerate(ids.tolist())]
+        finders = [models(i) for i in ids.tolist()]
         plan = cache[key] = _FinderPlan(finders, index, sight)
     return plan
 

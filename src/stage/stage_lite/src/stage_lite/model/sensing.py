@@ -29,9 +29,9 @@ _NO_RAYS = (np.zeros((0, 4)), np.zeros(0), np.zeros(1, np.int64), np.zeros(0, np
 
 def update_all(finders, index, sight, layer):
     """ModelFiducial::Update of each finder in turn, as Fiducial.update_one_by_one does it,
-    in one kernel (finders.prepare_ids, the finders in the list's order)."""
+    in one kernel (finders.prepare_ids)."""
     ids = np.fromiter((f.index for f in finders), np.int64, len(finders))
-    finding = prepare_ids(ids, finders.__getitem__, index, sight, layer, positions=True)
+    finding = prepare_ids(ids, {f.index: f for f in finders}.__getitem__, index, sight, layer)
     sense(None, finding)
     finding.publish()
 
@@ -49,7 +49,7 @@ def sense(casting, finding):
             pairs >= PARALLEL_CANDIDATES
             or (rays and rays + pairs // PAIRS_PER_RAY >= TOGETHER_WORK)):
         cast = (casting.args if casting is not None
-                else finding.space.cast_args(*_NO_RAYS, finding.args[12]))
+                else finding.space.cast_args(*_NO_RAYS, finding.layer))
         _cast_and_find(numba_threads(), *cast, *finding.args)
         return
     if casting is not None:
